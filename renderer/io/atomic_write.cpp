@@ -1,0 +1,27 @@
+#include "io/atomic_write.h"
+
+#include <unistd.h>
+
+#include <string>
+
+namespace rr {
+
+namespace fs = std::filesystem;
+
+void writeAtomically(const fs::path& destination,
+                     const std::function<void(const fs::path&)>& write) {
+    const fs::path dir = destination.has_parent_path() ? destination.parent_path() : fs::path(".");
+    const fs::path temporary =
+        dir / ("." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) +
+               destination.extension().string());
+    try {
+        write(temporary);
+        fs::rename(temporary, destination);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        throw;
+    }
+}
+
+}  // namespace rr

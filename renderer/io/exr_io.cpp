@@ -1,0 +1,81 @@
+#include "io/exr_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+
+#include <stdexcept>
+
+#include "io/atomic_write.h"
+
+namespace rr {
+
+void writeExr(const std::filesystem::path& file, const ExrImage& image) {
+    writeAtomically(file, [&](const std::filesystem::path& temporary) {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (const auto& [name, value] : image.attributes) {
+            if (const auto* s = std::get_if<std::string>(&value))
+                header.insert(name, Imf::StringAttribute(*s));
+            else if (const auto* i = std::get_if<int>(&value))
+                header.insert(name, Imf::IntAttribute(*i));
+            else
+                header.insert(name, Imf::DoubleAttribute(std::get<double>(value)));
+        }
+        Imf::FrameBuffer frame;
+        for (const auto& [name, data] : image.channels) {
+            if (data.size() != size_t(image.width) * image.height)
+                throw std::logic_error("EXR channel " + name + " has the wrong size");
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, (char*)data.data(), sizeof(float),
+                                          sizeof(float) * image.width));
+        }
+        Imf::OutputFile out(temporary.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(image.height);
+    });
+}
+
+ExrImage readExr(const std::filesystem::path& file) {
+    try {
+        Imf::InputFile in(file.c_str());
+        const Imath::Box2i window = in.header().dataWindow();
+        ExrImage image;
+        image.width = window.max.x - window.min.x + 1;
+        image.height = window.max.y - window.min.y + 1;
+        const size_t n = size_t(image.width) * image.height;
+        Imf::FrameBuffer frame;
+        for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) {
+            std::vector<float>& data = image.channels[it.name()];
+            data.resize(n);
+            char* base = reinterpret_cast<char*>(data.data()) -
+                         (window.min.x + size_t(window.min.y) * image.width) * sizeof(float);
+            frame.insert(it.name(),
+                         Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * image.width));
+        }
+        in.setFrameBuffer(frame);
+        in.readPixels(window.min.y, window.max.y);
+        for (auto it = in.header().begin(); it != in.header().end(); ++it) {
+            const Imf::Attribute& a = it.attribute();
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a))
+                image.attributes[it.name()] = s->value();
+            else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&a))
+                image.attributes[it.name()] = i->value();
+            else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&a))
+                image.attributes[it.name()] = d->value();
+            else if (const auto* f = dynamic_cast<const Imf::FloatAttribute*>(&a))
+                image.attributes[it.name()] = double(f->value());
+        }
+        return image;
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot read EXR " + file.string() + ": " + e.what());
+    }
+}
+
+}  // namespace rr

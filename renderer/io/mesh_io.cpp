@@ -1,0 +1,42 @@
+#include "io/mesh_io.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <stdexcept>
+
+namespace rr {
+
+MeshData loadMesh(const std::filesystem::path& file) {
+    Assimp::Importer importer;
+    // Joining identical vertices restores sharing (Assimp un-indexes some formats), which
+    // smooth normals need; degenerate faces are dropped.
+    const aiScene* scene =
+        importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                             aiProcess_FindDegenerates | aiProcess_SortByPType);
+    if (!scene || !scene->mRootNode)
+        throw std::runtime_error("cannot read mesh " + file.string() + ": " +
+                                 importer.GetErrorString());
+    MeshData data;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[m];
+        if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        const auto base = static_cast<uint32_t>(data.positions.size());
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            const aiVector3D& p = mesh->mVertices[v];
+            data.positions.emplace_back(p.x, p.y, p.z);
+        }
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            const aiFace& face = mesh->mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            for (int k = 0; k < 3; ++k)
+                data.indices.push_back(base + face.mIndices[k]);
+        }
+    }
+    if (data.indices.empty())
+        throw std::runtime_error("mesh " + file.string() + " has no triangles");
+    return data;
+}
+
+}  // namespace rr

@@ -1,0 +1,14 @@
+// Triangle meshes from PLY and OBJ files, through Assimp.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "scene/shapes/triangle_mesh.h"
+
+namespace rr {
+
+// Throws std::runtime_error with Assimp's message when the file cannot be read.
+MeshData loadMesh(const std::filesystem::path& file);
+
+}  // namespace rr

@@ -1,0 +1,31 @@
+// One factory per category, each building objects from their JSON description (Tungsten's
+// pattern). Adding a type = writing the class + one entry in the category's table.
+#pragma once
+
+#include <memory>
+
+#include "integrators/integrator.h"
+#include "integrators/path_tracer.h"
+#include "loader/asset_resolver.h"
+#include "loader/json_reader.h"
+#include "math/transform.h"
+#include "scene/light.h"
+#include "scene/material.h"
+#include "scene/shape.h"
+
+namespace rr {
+
+std::unique_ptr<Material> makeMaterial(ObjectReader& json);
+
+// Shapes are built in world space: `transform` is applied to their defining points.
+std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
+                                 const AssetResolver& assets);
+
+std::unique_ptr<Light> makeLight(ObjectReader& json);
+
+std::unique_ptr<Integrator> makeIntegrator(ObjectReader& json, const PathSettings& path);
+
+// The "transform" object: scale, then rotations in order, then translation; or a 4×4 matrix.
+Transform readTransform(ObjectReader& parent, const std::string& key);
+
+}  // namespace rr

@@ -1,0 +1,257 @@
+#include "loader/scene_loader.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "loader/factories.h"
+#include "loader/type_table.h"
+
+namespace rr {
+
+namespace fs = std::filesystem;
+
+Json parseSceneText(const std::string& text, const std::string& sourceName) {
+    try {
+        return Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const Json::parse_error& e) {
+        // Convert nlohmann's byte offset into a line and column.
+        size_t line = 1, column = 1;
+        for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        throw ConfigError("", "malformed JSON in " + sourceName + " at line " +
+                                  std::to_string(line) + ", column " + std::to_string(column));
+    }
+}
+
+Json readSceneFile(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw ConfigError("", "cannot open scene file " + file.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseSceneText(text.str(), file.string());
+}
+
+void applyOverride(Json& document, const std::string& assignment) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || assignment.empty() || assignment[0] != '/')
+        throw ConfigError("", "--set expects /json/pointer=value, got \"" + assignment + "\"");
+    const std::string pointerText = assignment.substr(0, eq);
+    const std::string valueText = assignment.substr(eq + 1);
+    Json value;
+    try {
+        value = Json::parse(valueText);
+    } catch (const Json::parse_error&) {
+        value = valueText;  // bare words are strings: --set /integrator/type=path
+    }
+    try {
+        const Json::json_pointer pointer(pointerText);
+        if (!document.contains(pointer.parent_pointer()))
+            throw ConfigError(
+                pointerText,
+                "--set: the parent " + pointer.parent_pointer().to_string() + " does not exist");
+        Json& parent = document[pointer.parent_pointer()];
+        if (parent.is_array()) {
+            const std::string last = pointer.back();
+            const bool isIndex =
+                !last.empty() && last.find_first_not_of("0123456789") == std::string::npos;
+            if (!isIndex || std::stoul(last) >= parent.size())
+                throw ConfigError(pointerText, "--set: not an existing array index");
+        } else if (!parent.is_object()) {
+            throw ConfigError(pointerText, "--set: the parent is neither an object nor an array");
+        }
+        document[pointer] = value;
+    } catch (const Json::exception& e) {
+        throw ConfigError(pointerText,
+                          std::string("--set: invalid JSON pointer (") + e.what() + ")");
+    }
+}
+
+namespace {
+
+RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
+    RenderSettings r;
+    if (j.has("resolution")) {
+        const auto res = j.getNumbers("resolution", 2, Range::closed(1, 16384));
+        if (res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]))
+            j.fail("resolution", "expected two integers");
+        r.width = static_cast<int>(res[0]);
+        r.height = static_cast<int>(res[1]);
+    }
+    r.spp = static_cast<uint32_t>(j.getInt("spp", 16, Range::closed(1, 1 << 24)));
+    r.seed = static_cast<uint32_t>(j.getInt("seed", 0, Range::closed(0, 4294967295.0)));
+    const std::string sampler =
+        j.getChoice("sampler", {"independent", "stratified", "hammersley"}, "independent");
+    parseSamplerType(sampler, &r.sampler);
+    path->maxDepth = static_cast<int>(j.getInt("max_depth", 16, Range::closed(-1, 100000)));
+    path->rrDepth = static_cast<int>(j.getInt("rr_depth", 4, Range::closed(1, 100000)));
+    r.lightSelection = j.getChoice("light_selection", {"power", "uniform"}, "power") == "uniform"
+                           ? LightSelection::Uniform
+                           : LightSelection::Power;
+    j.finish();
+    return r;
+}
+
+CameraSettings readCamera(ObjectReader& j) {
+    CameraSettings c;
+    const std::string type = j.getChoice("type", {"pinhole", "thin_lens"}, "pinhole");
+    c.position = j.getVec3("position");
+    c.lookAt = j.getVec3("look_at");
+    c.up = j.getVec3("up", Vec3(0, 1, 0));
+    c.verticalFovDegrees = j.getFloat("fov", 40.0f, Range::open(0, 180));
+    const Vec3 forward = c.lookAt - c.position;
+    if (!(length(forward) > 0)) j.fail("look_at", "must differ from the camera position");
+    if (!(length(cross(normalize(forward), c.up)) > 1e-4f))
+        j.fail("up", "must not be parallel to the viewing direction");
+    if (type == "thin_lens") {
+        c.apertureRadius = j.getFloat("aperture_radius", Range::positive());
+        c.focusDistance = j.getFloat("focus_distance", Range::positive());
+    }
+    if (j.has("shutter")) {
+        const auto s = j.getNumbers("shutter", 2, Range::unit());
+        if (s[0] > s[1]) j.fail("shutter", "expected [open, close] with open <= close");
+        c.shutterOpen = static_cast<float>(s[0]);
+        c.shutterClose = static_cast<float>(s[1]);
+    }
+    j.finish();
+    return c;
+}
+
+// Reads the named material table; inline materials in shapes are added as they appear.
+class MaterialCatalog {
+  public:
+    MaterialCatalog(const Json* table, const std::string& pointer, SceneBuilder& builder)
+        : builder_(builder) {
+        if (!table) return;
+        ObjectReader j(*table, pointer);
+        for (const auto& item : table->items()) {
+            ObjectReader m(j.raw(item.key()), j.pointerTo(item.key()));
+            named_[item.key()] = builder_.addMaterial(makeMaterial(m));
+        }
+        j.finish();
+    }
+
+    // A shape's "material": a name from the table or an inline object.
+    const Material* resolve(ObjectReader& shape) {
+        const Json& ref = shape.raw("material");
+        if (ref.is_object()) {
+            ObjectReader m(ref, shape.pointerTo("material"));
+            return builder_.addMaterial(makeMaterial(m));
+        }
+        if (!ref.is_string()) shape.fail("material", "expected a material name or object");
+        const auto it = named_.find(ref.get<std::string>());
+        if (it == named_.end())
+            shape.fail("material",
+                       "no material named \"" + ref.get<std::string>() + "\" in /materials");
+        return it->second;
+    }
+
+  private:
+    SceneBuilder& builder_;
+    std::map<std::string, const Material*> named_;
+};
+
+void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builder,
+               const AssetResolver& assets, const CameraSettings& camera) {
+    Transform transform = readTransform(j, "transform");
+
+    Rgb emission(0.0f);
+    bool twoSided = false;
+    if (const Json* e = j.rawOptional("emission")) {
+        ObjectReader ej(*e, j.pointerTo("emission"));
+        emission = ej.getRgb("radiance");
+        twoSided = ej.getBool("two_sided", false);
+        ej.finish();
+    }
+    const Material* material = nullptr;
+    if (j.has("material"))
+        material = materials.resolve(j);
+    else if (emission.isBlack())
+        j.fail("material", "missing required key (only emitters may omit a material)");
+
+    Vec3 motion(0.0f);
+    if (const Json* m = j.rawOptional("motion")) {
+        ObjectReader mj(*m, j.pointerTo("motion"));
+        motion = mj.getVec3("translate");
+        mj.finish();
+    }
+    // Without a shutter interval a moving shape is frozen where it is at the shutter instant,
+    // so the scene pays nothing for motion blur.
+    const bool shutterOpenInterval = camera.shutterClose > camera.shutterOpen;
+    if (!shutterOpenInterval)
+        transform = transform.then(Transform::translate(motion * camera.shutterOpen));
+
+    // The geometry is read last: the factory's finish() then rejects unknown keys for the
+    // whole shape object, including the common keys read above.
+    std::unique_ptr<Shape> shape = makeShape(j, transform, assets);
+    if (!(shape->area() > 0) || !std::isfinite(shape->area()))
+        j.fail("type", "the shape has zero or non-finite area");
+    if (shutterOpenInterval) shape->setMotion(motion);
+    builder.addShape(std::move(shape), material, emission, twoSided);
+}
+
+}  // namespace
+
+LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
+    ObjectReader root(document, "");
+    root.getString("description", "");
+
+    PathSettings path;
+    RenderSettings render;
+    {
+        static const Json empty = Json::object();
+        const Json* r = root.rawOptional("render");
+        ObjectReader rj(r ? *r : empty, root.pointerTo("render"));
+        render = readRenderSettings(rj, &path);
+    }
+
+    SceneBuilder builder;
+    CameraSettings camera;
+    {
+        ObjectReader cj(root.raw("camera"), root.pointerTo("camera"));
+        camera = readCamera(cj);
+    }
+    builder.setCamera(camera, render.width, render.height);
+
+    MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder);
+
+    const Json& shapes = root.raw("shapes");
+    if (!shapes.is_array()) root.fail("shapes", "expected an array of shapes");
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
+        readShape(sj, materials, builder, assets, camera);
+    }
+
+    if (const Json* lights = root.rawOptional("lights")) {
+        if (!lights->is_array()) root.fail("lights", "expected an array of lights");
+        for (size_t i = 0; i < lights->size(); ++i) {
+            ObjectReader lj((*lights)[i], root.pointerTo("lights") + "/" + std::to_string(i));
+            builder.addLight(makeLight(lj));
+        }
+    }
+
+    std::unique_ptr<Integrator> integrator;
+    {
+        static const Json defaultIntegrator = {{"type", "path_mis"}};
+        const Json* ij = root.rawOptional("integrator");
+        ObjectReader reader(ij ? *ij : defaultIntegrator, root.pointerTo("integrator"));
+        integrator = makeIntegrator(reader, path);
+    }
+    root.finish();
+
+    LoadedScene loaded;
+    loaded.scene = builder.build(render.lightSelection);
+    if (loaded.scene->lights().empty())
+        throw ConfigError("", "the scene has no light: add an emitter shape or a light");
+    loaded.integrator = std::move(integrator);
+    loaded.render = render;
+    return loaded;
+}
+
+}  // namespace rr

@@ -1,0 +1,122 @@
+#include <cmath>
+
+#include "io/mesh_io.h"
+#include "loader/factories.h"
+#include "loader/type_table.h"
+#include "scene/shapes/disk.h"
+#include "scene/shapes/quad.h"
+#include "scene/shapes/sphere.h"
+#include "scene/shapes/triangle_mesh.h"
+
+namespace rr {
+
+namespace {
+
+float similarityScale(ObjectReader& j, const Transform& t, const char* shape) {
+    float scale = 1;
+    if (!t.isSimilarity(&scale))
+        j.fail("transform",
+               std::string("a ") + shape + " takes only rotation, uniform scale and translation");
+    return scale;
+}
+
+std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const AssetResolver&) {
+    const Vec3 center = j.getVec3("center", Vec3(0.0f));
+    const float radius = j.getFloat("radius", Range::positive());
+    const float scale = similarityScale(j, t, "sphere");
+    return std::make_unique<Sphere>(t.point(center), radius * scale);
+}
+
+std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const AssetResolver&) {
+    const Vec3 corner = t.point(j.getVec3("corner"));
+    const Vec3 edgeU = t.vector(j.getVec3("edge_u"));
+    const Vec3 edgeV = t.vector(j.getVec3("edge_v"));
+    const float area = length(cross(edgeU, edgeV));
+    if (!(area > 1e-12f * (lengthSquared(edgeU) + lengthSquared(edgeV))) || !(area > 0))
+        j.fail("edge_v", "edges are parallel or zero: the quad has zero area");
+    return std::make_unique<Quad>(corner, edgeU, edgeV);
+}
+
+std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const AssetResolver&) {
+    const Vec3 center = j.getVec3("center", Vec3(0.0f));
+    const Vec3 normal = j.getVec3("normal", Vec3(0, 0, 1));
+    const float radius = j.getFloat("radius", Range::positive());
+    if (!(length(normal) > 0)) j.fail("normal", "expected a non-zero vector");
+    const float scale = similarityScale(j, t, "disk");
+    return std::make_unique<Disk>(t.point(center), normalize(t.normal(normal)), radius * scale);
+}
+
+std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const AssetResolver& assets) {
+    const std::string file = j.getString("file");
+    const std::string normals = j.getChoice("normals", {"geometric", "smooth"}, "geometric");
+    const auto path = assets.resolve(file);
+    if (!path)
+        j.fail("file", "mesh \"" + file + "\" not found; searched " + assets.describe() +
+                           " (run `make assets`, or put the file under assets/ or set "
+                           "RENDERER_ASSETS)");
+    MeshData data;
+    try {
+        data = loadMesh(*path);
+    } catch (const std::exception& e) {
+        j.fail("file", e.what());
+    }
+    for (Vec3& p : data.positions)
+        p = t.point(p);
+    if (normals == "smooth") data.normals = TriangleMesh::smoothNormals(data);
+    return std::make_unique<TriangleMesh>(std::move(data));
+}
+
+}  // namespace
+
+std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
+                                 const AssetResolver& assets) {
+    static const TypeTable<Shape, const Transform&, const AssetResolver&> table{
+        {"sphere", makeSphere},
+        {"quad", makeQuad},
+        {"disk", makeDisk},
+        {"mesh", makeMesh},
+    };
+    return buildByType(json, "shape", table, transform, assets);
+}
+
+Transform readTransform(ObjectReader& parent, const std::string& key) {
+    const Json* value = parent.rawOptional(key);
+    if (!value) return Transform();
+    ObjectReader j(*value, parent.pointerTo(key));
+    Transform t;
+    if (j.has("matrix")) {
+        const auto m = j.getNumbers("matrix", 16);
+        float f[16];
+        for (int i = 0; i < 16; ++i)
+            f[i] = static_cast<float>(m[i]);
+        t = Transform::fromRowMajor(f);
+    } else {
+        if (j.has("scale")) {
+            const Json& s = j.raw("scale");
+            t = s.is_number() ? Transform::scale(Vec3(j.getFloat("scale", Range::positive())))
+                              : Transform::scale(j.getVec3("scale"));
+        }
+        if (const Json* rotations = j.rawOptional("rotate")) {
+            const std::string at = j.pointerTo("rotate");
+            auto addRotation = [&](const Json& r, const std::string& pointer) {
+                ObjectReader rj(r, pointer);
+                const Vec3 axis = rj.getVec3("axis");
+                if (!(length(axis) > 0)) rj.fail("axis", "expected a non-zero vector");
+                t = t.then(Transform::rotate(axis, rj.getFloat("angle")));
+                rj.finish();
+            };
+            if (rotations->is_array()) {
+                for (size_t i = 0; i < rotations->size(); ++i)
+                    addRotation((*rotations)[i], at + "/" + std::to_string(i));
+            } else {
+                addRotation(*rotations, at);
+            }
+        }
+        t = t.then(Transform::translate(j.getVec3("translate", Vec3(0.0f))));
+    }
+    if (!t.isInvertible()) parent.fail(key, "the transform is singular");
+    j.finish();
+    return t;
+}
+
+}  // namespace rr

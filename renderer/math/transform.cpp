@@ -1,0 +1,91 @@
+#include "math/transform.h"
+
+#include <cmath>
+
+namespace rr {
+
+namespace {
+Imath::V3f toImath(const Vec3& v) {
+    return {v.x, v.y, v.z};
+}
+Vec3 fromImath(const Imath::V3f& v) {
+    return {v.x, v.y, v.z};
+}
+}  // namespace
+
+Transform Transform::translate(const Vec3& t) {
+    Transform r;
+    r.m_.setTranslation(toImath(t));
+    return r;
+}
+
+Transform Transform::scale(const Vec3& s) {
+    Transform r;
+    r.m_.setScale(toImath(s));
+    return r;
+}
+
+Transform Transform::rotate(const Vec3& axis, float degrees) {
+    Transform r;
+    r.m_.setAxisAngle(toImath(normalize(axis)), degrees * kPi / 180.0f);
+    return r;
+}
+
+Transform Transform::fromRowMajor(const float m[16]) {
+    // A row-major matrix for column vectors is the transpose of Imath's row-vector layout.
+    Transform r;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            r.m_[j][i] = m[4 * i + j];
+    return r;
+}
+
+Transform Transform::then(const Transform& next) const {
+    Transform r;
+    r.m_ = m_ * next.m_;
+    return r;
+}
+
+Vec3 Transform::point(const Vec3& p) const {
+    Imath::V3f out;
+    m_.multVecMatrix(toImath(p), out);
+    return fromImath(out);
+}
+
+Vec3 Transform::vector(const Vec3& v) const {
+    Imath::V3f out;
+    m_.multDirMatrix(toImath(v), out);
+    return fromImath(out);
+}
+
+Vec3 Transform::normal(const Vec3& n) const {
+    // Normals transform by the inverse transpose of the linear part.
+    const Imath::M44f invT = m_.inverse().transposed();
+    Imath::V3f out;
+    invT.multDirMatrix(toImath(n), out);
+    return fromImath(out);
+}
+
+bool Transform::isInvertible() const {
+    const float det = m_[0][0] * (m_[1][1] * m_[2][2] - m_[1][2] * m_[2][1]) -
+                      m_[0][1] * (m_[1][0] * m_[2][2] - m_[1][2] * m_[2][0]) +
+                      m_[0][2] * (m_[1][0] * m_[2][1] - m_[1][1] * m_[2][0]);
+    return std::isfinite(det) && std::abs(det) > 1e-12f;
+}
+
+bool Transform::isSimilarity(float* uniformScale) const {
+    const Vec3 rows[3] = {{m_[0][0], m_[0][1], m_[0][2]},
+                          {m_[1][0], m_[1][1], m_[1][2]},
+                          {m_[2][0], m_[2][1], m_[2][2]}};
+    const float s = length(rows[0]);
+    constexpr float kTol = 1e-4f;
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(length(rows[i]) - s) > kTol * s) return false;
+        for (int j = i + 1; j < 3; ++j)
+            if (std::abs(dot(rows[i], rows[j])) > kTol * s * s) return false;
+    }
+    if (uniformScale) *uniformScale = s;
+    return s > 0;
+}
+
+}  // namespace rr

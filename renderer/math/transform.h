@@ -1,0 +1,38 @@
+// Affine transforms for placing shapes. A thin wrapper over Imath's 4×4 matrix (row-vector
+// convention: p' = p · M), so the rest of the renderer never sees Imath types.
+#pragma once
+
+#include <Imath/ImathMatrix.h>
+
+#include "math/vector.h"
+
+namespace rr {
+
+class Transform {
+  public:
+    Transform() = default;
+
+    static Transform translate(const Vec3& t);
+    static Transform scale(const Vec3& s);
+    // Rotation by `degrees` about `axis` (right-handed).
+    static Transform rotate(const Vec3& axis, float degrees);
+    // Row-major 4×4 matrix acting on column vectors, as written in scene files.
+    static Transform fromRowMajor(const float m[16]);
+
+    // Applies `this` first, then `next`.
+    Transform then(const Transform& next) const;
+
+    Vec3 point(const Vec3& p) const;
+    Vec3 vector(const Vec3& v) const;
+    Vec3 normal(const Vec3& n) const;  // not normalized
+
+    bool isIdentity() const { return m_ == Imath::M44f(); }
+    bool isInvertible() const;
+    // True when the linear part is a rotation times a uniform scale; returns that scale.
+    bool isSimilarity(float* uniformScale) const;
+
+  private:
+    Imath::M44f m_;  // p' = p · m_
+};
+
+}  // namespace rr

@@ -1,0 +1,77 @@
+// Every random decision a path makes has a name. A sample coordinate is addressed by
+// (decision, path vertex, repeat), so a technique can find — and replace — the coordinates
+// that feed one decision (TAIS's importance maps warp exactly these: time, lens, light
+// selection, point on light, scatter direction, bifurcation, scatter distance).
+#pragma once
+
+#include <cstdint>
+
+namespace rr {
+
+enum class Decision : uint8_t {
+    FilmPosition,     // 2-D: position inside the pixel
+    Time,             // 1-D: instant within the shutter interval
+    Lens,             // 2-D: point on the thin-lens aperture
+    LightSelect,      // 1-D: which light to sample for next-event estimation
+    LightPoint,       // 2-D: point (or direction) on the chosen light
+    BsdfLobe,         // 1-D: which lobe (e.g. Fresnel reflect vs transmit: TAIS bifurcation)
+    BsdfDirection,    // 2-D: direction within the chosen lobe
+    MediumDistance,   // 1-D: free-flight distance in a participating medium
+    RussianRoulette,  // 1-D: path termination
+    Count
+};
+
+constexpr int dimensionCount(Decision d) {
+    switch (d) {
+        case Decision::FilmPosition:
+        case Decision::Lens:
+        case Decision::LightPoint:
+        case Decision::BsdfDirection:
+            return 2;
+        default:
+            return 1;
+    }
+}
+
+constexpr const char* decisionName(Decision d) {
+    switch (d) {
+        case Decision::FilmPosition:
+            return "film_position";
+        case Decision::Time:
+            return "time";
+        case Decision::Lens:
+            return "lens";
+        case Decision::LightSelect:
+            return "light_select";
+        case Decision::LightPoint:
+            return "light_point";
+        case Decision::BsdfLobe:
+            return "bsdf_lobe";
+        case Decision::BsdfDirection:
+            return "bsdf_direction";
+        case Decision::MediumDistance:
+            return "medium_distance";
+        case Decision::RussianRoulette:
+            return "russian_roulette";
+        case Decision::Count:
+            break;
+    }
+    return "?";
+}
+
+// Where in a path a decision is made. Camera decisions use vertex 0. `repeat` numbers
+// repeated draws of one decision at one vertex (several light samples per pixel sample);
+// `repeatCount` tells structured samplers how many draws to stratify together.
+struct DecisionSite {
+    Decision decision;
+    uint32_t vertex = 0;
+    uint32_t repeat = 0;
+    uint32_t repeatCount = 1;
+
+    constexpr uint64_t key() const {
+        return (static_cast<uint64_t>(vertex) << 40) | (static_cast<uint64_t>(decision) << 32) |
+               repeat;
+    }
+};
+
+}  // namespace rr

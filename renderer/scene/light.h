@@ -1,0 +1,41 @@
+// Light interface. Next-event estimation asks a light for a direction towards it with a
+// solid-angle density; MIS asks for the density of a direction found by BSDF sampling.
+// Spot, polygon and environment lights implement the same interface.
+#pragma once
+
+#include "math/rgb.h"
+#include "math/vector.h"
+#include "scene/surface_hit.h"
+
+namespace rr {
+
+struct LightSample {
+    Vec3 direction;  // unit, from the reference point towards the light
+    Vec3 position;   // sampled point on the light (shadow-ray target)
+    Vec3 normal;     // light surface normal there (zero for point lights)
+    Rgb radiance;    // arriving radiance (for delta lights: intensity / distance²)
+    float pdf = 0;   // solid angle; 1 for delta lights
+    bool isDelta = false;
+};
+
+class Light {
+  public:
+    virtual ~Light() = default;
+
+    virtual bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const = 0;
+    // Solid-angle density with which sample() from `reference` yields the point `hit` on this
+    // light; zero for delta lights.
+    virtual float pdf(const Vec3& reference, const SurfaceHit& hit) const = 0;
+    // Total emitted power (flux), used for light selection by power.
+    virtual Rgb power() const = 0;
+    virtual bool isDelta() const = 0;
+
+    // Index in the scene's light list; set by the scene.
+    int index() const { return index_; }
+    void setIndex(int i) { index_ = i; }
+
+  private:
+    int index_ = -1;
+};
+
+}  // namespace rr

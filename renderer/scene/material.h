@@ -1,0 +1,67 @@
+// Material (BSDF) interface, in the local shading frame where the normal is +z.
+//  - eval(wo, wi): f(wo, wi)·|cos θi|, zero for specular lobes;
+//  - pdf(wo, wi): solid-angle density of sample(); zero for specular lobes;
+//  - sample(): picks a lobe with `uLobe` (a named decision: TAIS's bifurcation map replaces
+//    it) and a direction with `uDirection`, returns weight = f·|cos θi| / pdf;
+//  - peaks(): the directions where lobes peak, for two-stage sampling's initial splits.
+// Materials without transmission are two-sided: they mirror wo to the normal's side.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "math/rgb.h"
+#include "math/vector.h"
+
+namespace rr {
+
+enum LobeFlags : uint8_t {
+    kReflection = 1 << 0,
+    kTransmission = 1 << 1,
+    kDiffuse = 1 << 2,
+    kGlossy = 1 << 3,
+    kSpecular = 1 << 4,
+};
+
+// Where a material is evaluated: texture coordinates and position, for spatially varying
+// parameters (checkerboards, image maps) in later materials.
+struct ShadingContext {
+    Vec2 uv;
+    Vec3 position;
+};
+
+struct BsdfSample {
+    Vec3 wi;        // local frame
+    Rgb weight;     // f·|cos θi| / pdf (for specular lobes: the lobe's value / its probability)
+    float pdf = 0;  // solid angle; for specular lobes the discrete probability of the lobe
+    uint8_t lobe = 0;
+    bool isSpecular() const { return (lobe & kSpecular) != 0; }
+};
+
+// Up to 16 peak directions (local frame): mirror, retro-reflection, anisotropic cone peaks.
+struct LobePeaks {
+    std::array<Vec3, 16> directions;
+    int count = 0;
+    void add(const Vec3& w) {
+        if (count < static_cast<int>(directions.size())) directions[count++] = w;
+    }
+};
+
+class Material {
+  public:
+    virtual ~Material() = default;
+
+    virtual Rgb eval(const ShadingContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    virtual float pdf(const ShadingContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    virtual bool sample(const ShadingContext& ctx, const Vec3& wo, float uLobe, Vec2 uDirection,
+                        BsdfSample* out) const = 0;
+    virtual void peaks(const ShadingContext& ctx, const Vec3& wo, LobePeaks* out) const = 0;
+
+    // Union of the lobes this material can produce.
+    virtual uint8_t lobes() const = 0;
+    bool hasNonSpecular() const { return (lobes() & (kDiffuse | kGlossy)) != 0; }
+    // Materials with transmission need true orientation (entering vs leaving).
+    bool hasTransmission() const { return (lobes() & kTransmission) != 0; }
+};
+
+}  // namespace rr

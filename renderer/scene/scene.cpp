@@ -1,0 +1,121 @@
+#include "scene/scene.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "scene/lights/area_light.h"
+
+namespace rr {
+
+namespace {
+
+void throwOnEmbreeError(RTCDevice device, const char* what) {
+    const RTCError err = rtcGetDeviceError(device);
+    if (err != RTC_ERROR_NONE)
+        throw std::runtime_error(std::string("Embree error during ") + what + " (code " +
+                                 std::to_string(static_cast<int>(err)) + ")");
+}
+
+RTCRay toEmbree(const Ray& ray) {
+    RTCRay r;
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = 0.0f;
+    r.tfar = ray.tMax;
+    r.time = ray.time;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+}  // namespace
+
+Scene::~Scene() {
+    if (rtcScene_) rtcReleaseScene(rtcScene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = toEmbree(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtcScene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    const Shape* shape = shapes_[rh.hit.geomID].get();
+    hit->distance = rh.ray.tfar;
+    hit->time = ray.time;
+    hit->shape = shape;
+    shape->completeHit(ray, rh.hit, hit);
+    return true;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = toEmbree(ray);
+    rtcOccluded1(rtcScene_, &context, &r);
+    return r.tfar < 0;
+}
+
+SceneBuilder::SceneBuilder() : scene_(new Scene()) {
+    scene_->device_ = rtcNewDevice(nullptr);
+    if (!scene_->device_) throw std::runtime_error("cannot create an Embree device");
+    scene_->rtcScene_ = rtcNewScene(scene_->device_);
+}
+
+const Material* SceneBuilder::addMaterial(std::unique_ptr<Material> material) {
+    scene_->materials_.push_back(std::move(material));
+    return scene_->materials_.back().get();
+}
+
+void SceneBuilder::addShape(std::unique_ptr<Shape> shape, const Material* material,
+                            const Rgb& emission, bool twoSidedEmission) {
+    shape->setMaterial(material);
+    if (!emission.isBlack()) {
+        auto light = std::make_unique<AreaLight>(shape.get(), emission, twoSidedEmission);
+        shape->setAreaLight(light.get());
+        addLight(std::move(light));
+    }
+    scene_->shapes_.push_back(std::move(shape));
+}
+
+void SceneBuilder::addLight(std::unique_ptr<Light> light) {
+    light->setIndex(static_cast<int>(scene_->lights_.size()));
+    scene_->lights_.push_back(light.get());
+    scene_->ownedLights_.push_back(std::move(light));
+}
+
+void SceneBuilder::setCamera(const CameraSettings& settings, int width, int height) {
+    scene_->camera_ = std::make_unique<Camera>(settings, width, height);
+}
+
+std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
+    Scene& s = *scene_;
+    if (!s.camera_) throw std::logic_error("scene has no camera");
+    bool anyMotion = false;
+    for (size_t i = 0; i < s.shapes_.size(); ++i) {
+        RTCGeometry g = s.shapes_[i]->createGeometry(s.device_);
+        rtcAttachGeometryByID(s.rtcScene_, g, static_cast<unsigned>(i));
+        rtcReleaseGeometry(g);
+        anyMotion = anyMotion || s.shapes_[i]->hasMotion();
+    }
+    rtcSetSceneBuildQuality(s.rtcScene_, RTC_BUILD_QUALITY_HIGH);
+    rtcCommitScene(s.rtcScene_);
+    throwOnEmbreeError(s.device_, "scene build");
+
+    s.features_.motionBlur = anyMotion && s.camera_->hasShutterInterval();
+    s.features_.thinLens = s.camera_->isThinLens();
+    s.lightSelector_ = makeLightSelector(selection, s.lights_);
+    return std::move(scene_);
+}
+
+}  // namespace rr

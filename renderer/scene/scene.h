@@ -1,0 +1,80 @@
+// A renderable scene: camera, shapes with materials, lights, and the Embree acceleration
+// structure. Built once by SceneBuilder, then immutable and shared by all render threads.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/light.h"
+#include "scene/light_selector.h"
+#include "scene/material.h"
+#include "scene/shape.h"
+#include "scene/surface_hit.h"
+
+namespace rr {
+
+class AreaLight;
+
+// What the scene uses; everything else is skipped at no cost (and recorded in the EXR).
+struct SceneFeatures {
+    bool motionBlur = false;  // some shape moves and the shutter is open for a while
+    bool thinLens = false;    // the camera has an aperture
+    bool media = false;       // participating media (none yet)
+};
+
+class Scene {
+  public:
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    bool intersect(const Ray& ray, SurfaceHit* hit) const;
+    bool occluded(const Ray& ray) const;
+
+    const Camera& camera() const { return *camera_; }
+    std::span<const Light* const> lights() const { return lights_; }
+    const LightSelector& lightSelector() const { return *lightSelector_; }
+    const SceneFeatures& features() const { return features_; }
+    size_t shapeCount() const { return shapes_.size(); }
+
+  private:
+    friend class SceneBuilder;
+    Scene() = default;
+
+    std::unique_ptr<Camera> camera_;
+    std::vector<std::unique_ptr<Material>> materials_;
+    std::vector<std::unique_ptr<Shape>> shapes_;  // index = Embree geometry id
+    std::vector<std::unique_ptr<Light>> ownedLights_;
+    std::vector<const Light*> lights_;
+    std::unique_ptr<LightSelector> lightSelector_;
+    SceneFeatures features_;
+    RTCDevice device_ = nullptr;
+    RTCScene rtcScene_ = nullptr;
+};
+
+class SceneBuilder {
+  public:
+    SceneBuilder();
+
+    // Materials are owned by the scene; the returned pointer stays valid.
+    const Material* addMaterial(std::unique_ptr<Material> material);
+    // Adds a shape with its material; a non-black `emission` makes it an area light.
+    void addShape(std::unique_ptr<Shape> shape, const Material* material, const Rgb& emission,
+                  bool twoSidedEmission);
+    void addLight(std::unique_ptr<Light> light);
+    void setCamera(const CameraSettings& settings, int width, int height);
+
+    // Builds the acceleration structure. Throws std::runtime_error on Embree failure.
+    std::unique_ptr<Scene> build(LightSelection selection);
+
+  private:
+    std::unique_ptr<Scene> scene_;
+};
+
+}  // namespace rr

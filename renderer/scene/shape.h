@@ -1,0 +1,68 @@
+// A shape is geometry Embree can intersect, plus what lights need from it: area and sampling.
+// Shapes may translate linearly over scene time [0, 1] (motion blur); `offsetAt` gives the
+// displacement at a time. Shapes are built in world space (transforms applied at load).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include "math/vector.h"
+#include "scene/surface_hit.h"
+
+namespace rr {
+
+class Material;
+class AreaLight;
+
+// A point on a shape chosen by a light-sampling strategy; `pdf` is per unit solid angle as
+// seen from the reference point.
+struct ShapeSample {
+    Vec3 position;
+    Vec3 normal;
+    float pdf = 0;
+};
+
+class Shape {
+  public:
+    virtual ~Shape() = default;
+
+    // The Embree geometry (committed), with two time steps when the shape moves.
+    virtual RTCGeometry createGeometry(RTCDevice device) const = 0;
+    // Fills position, normals and uv from Embree's hit record (ray distance `t`).
+    virtual void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const = 0;
+
+    virtual float area() const = 0;
+    // Uniform sample by area at time 0 (position, normal); density 1/area.
+    virtual void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const = 0;
+
+    // Samples a point visible-side-agnostically with a solid-angle density from `reference`.
+    // The default converts uniform area sampling; shapes with better strategies override both
+    // this and directionPdf consistently.
+    virtual bool sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const;
+    // Solid-angle density with which sampleDirection would produce `hit` from `reference`.
+    virtual float directionPdf(const Vec3& reference, const SurfaceHit& hit) const;
+
+    void setMotion(const Vec3& translation) { motion_ = translation; }
+    bool hasMotion() const { return !(motion_ == Vec3(0.0f)); }
+    Vec3 offsetAt(float time) const { return motion_ * time; }
+    const Vec3& motion() const { return motion_; }
+
+    void setMaterial(const Material* m) { material_ = m; }
+    const Material* material() const { return material_; }
+    void setAreaLight(const AreaLight* l) { areaLight_ = l; }
+    const AreaLight* areaLight() const { return areaLight_; }
+
+  protected:
+    // Uploads `count` vertices (one or two time steps) into an Embree vertex buffer.
+    void setVertexBuffers(RTCGeometry geometry, const Vec3* vertices, size_t count) const;
+
+  private:
+    Vec3 motion_;
+    const Material* material_ = nullptr;
+    const AreaLight* areaLight_ = nullptr;
+};
+
+// Converts an area density at `position` (normal `normal`) seen from `reference` to solid angle.
+float areaToSolidAngle(float areaPdf, const Vec3& reference, const Vec3& position,
+                       const Vec3& normal);
+
+}  // namespace rr

@@ -1,0 +1,31 @@
+// Flat disk (centre, unit normal, radius): Embree user geometry, uv = (r / radius, φ / 2π).
+#pragma once
+
+#include "math/frame.h"
+#include "scene/shape.h"
+
+namespace rr {
+
+class Disk final : public Shape {
+  public:
+    Disk(const Vec3& center, const Vec3& normal, float radius);
+
+    RTCGeometry createGeometry(RTCDevice device) const override;
+    void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
+    float area() const override { return kPi * radius_ * radius_; }
+    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+
+    // Ray parameter of the hit with the disk displaced by `offset`, if within (tMin, tMax).
+    bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& offset, float tMin,
+                   float tMax, float* t) const;
+    Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
+    float radius() const { return radius_; }
+    const Vec3& normal() const { return frame_.n; }
+
+  private:
+    Vec3 center_;
+    Frame frame_;
+    float radius_;
+};
+
+}  // namespace rr

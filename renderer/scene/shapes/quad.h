@@ -1,0 +1,24 @@
+// Parallelogram corner + s·edgeU + t·edgeV, (s, t) ∈ [0,1]²; normal = edgeU × edgeV.
+// Intersected as an Embree quad; uv = (s, t).
+#pragma once
+
+#include "scene/shape.h"
+
+namespace rr {
+
+class Quad final : public Shape {
+  public:
+    Quad(const Vec3& corner, const Vec3& edgeU, const Vec3& edgeV);
+
+    RTCGeometry createGeometry(RTCDevice device) const override;
+    void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
+    float area() const override { return area_; }
+    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+
+  private:
+    Vec3 corner_, edgeU_, edgeV_, normal_;
+    Vec3 dualU_, dualV_;  // dot(p − corner, dualU_) = s
+    float area_;
+};
+
+}  // namespace rr

@@ -1,0 +1,156 @@
+#include "scene/shapes/sphere.h"
+
+#include <cmath>
+
+#include "sampling/warps.h"
+
+namespace rr {
+
+namespace {
+
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
+    const Vec3 c = s->centerAt(static_cast<float>(args->timeStep));
+    const float r = s->radius() * (1.0f + 1e-6f);
+    *args->bounds_o = RTCBounds{c.x - r, c.y - r, c.z - r, 0, c.x + r, c.y + r, c.z + r, 0};
+}
+
+Vec3 rayOrigin(RTCRayN* rays, unsigned n, unsigned i) {
+    return {RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i)};
+}
+Vec3 rayDirection(RTCRayN* rays, unsigned n, unsigned i) {
+    return {RTCRayN_dir_x(rays, n, i), RTCRayN_dir_y(rays, n, i), RTCRayN_dir_z(rays, n, i)};
+}
+
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const Vec3 c = s->centerAt(RTCRayN_time(rays, args->N, i));
+        float t;
+        if (!s->intersect(rayOrigin(rays, args->N, i), rayDirection(rays, args->N, i), c,
+                          RTCRayN_tnear(rays, args->N, i), RTCRayN_tfar(rays, args->N, i), &t))
+            continue;
+        RTCRayN_tfar(rays, args->N, i) = t;
+        const Vec3 p = rayOrigin(rays, args->N, i) + rayDirection(rays, args->N, i) * t;
+        const Vec3 n = p - c;
+        RTCHitN_Ng_x(hits, args->N, i) = n.x;
+        RTCHitN_Ng_y(hits, args->N, i) = n.y;
+        RTCHitN_Ng_z(hits, args->N, i) = n.z;
+        RTCHitN_u(hits, args->N, i) = 0;
+        RTCHitN_v(hits, args->N, i) = 0;
+        RTCHitN_primID(hits, args->N, i) = args->primID;
+        RTCHitN_geomID(hits, args->N, i) = args->geomID;
+        RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+    }
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const Vec3 c = s->centerAt(RTCRayN_time(args->ray, args->N, i));
+        float t;
+        if (s->intersect(rayOrigin(args->ray, args->N, i), rayDirection(args->ray, args->N, i), c,
+                         RTCRayN_tnear(args->ray, args->N, i), RTCRayN_tfar(args->ray, args->N, i),
+                         &t))
+            RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+}  // namespace
+
+bool Sphere::intersect(const Vec3& origin, const Vec3& direction, const Vec3& center, float tMin,
+                       float tMax, float* t) const {
+    const double ox = double(origin.x) - center.x, oy = double(origin.y) - center.y,
+                 oz = double(origin.z) - center.z;
+    const double dx = direction.x, dy = direction.y, dz = direction.z;
+    const double a = dx * dx + dy * dy + dz * dz;
+    const double b = ox * dx + oy * dy + oz * dz;  // half of the linear coefficient
+    // c − b²/a computed as |o − (b/a) d|² − r² avoids cancellation for distant spheres.
+    const double px = ox - b / a * dx, py = oy - b / a * dy, pz = oz - b / a * dz;
+    const double r = radius_;
+    const double discriminant = a * (r * r - (px * px + py * py + pz * pz));
+    if (discriminant < 0) return false;
+    const double q = -b - std::copysign(std::sqrt(discriminant), b);
+    const double c = ox * ox + oy * oy + oz * oz - r * r;
+    double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > tMin && t0 < tMax) {
+        *t = static_cast<float>(t0);
+        return true;
+    }
+    if (t1 > tMin && t1 < tMax) {
+        *t = static_cast<float>(t1);
+        return true;
+    }
+    return false;
+}
+
+RTCGeometry Sphere::createGeometry(RTCDevice device) const {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryTimeStepCount(g, hasMotion() ? 2 : 1);
+    rtcSetGeometryUserData(g, const_cast<Sphere*>(this));
+    rtcSetGeometryBoundsFunction(g, sphereBounds, nullptr);
+    rtcSetGeometryIntersectFunction(g, sphereIntersect);
+    rtcSetGeometryOccludedFunction(g, sphereOccluded);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
+    const Vec3 c = centerAt(ray.time);
+    const Vec3 n = normalize(ray.origin + ray.direction * out->distance - c);
+    out->position = c + n * radius_;  // reprojected onto the surface: exact up to rounding
+    out->geometricNormal = n;
+    out->shadingNormal = n;
+    const float phi = std::atan2(n.y, n.x);
+    out->uv = Vec2((phi < 0 ? phi + kTwoPi : phi) / kTwoPi, safeAcos(n.z) * kInvPi);
+}
+
+void Sphere::sampleArea(Vec2 u, Vec3* position, Vec3* normal) const {
+    *normal = squareToUniformSphere(u);
+    *position = center_ + *normal * radius_;
+}
+
+bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
+    const Vec3 c = centerAt(time);
+    const Vec3 toCenter = c - reference;
+    const float dist2 = lengthSquared(toCenter);
+    const float r2 = radius_ * radius_;
+    if (dist2 <= r2 * (1.0f + 1e-4f)) return Shape::sampleDirection(reference, u, time, out);
+
+    // Uniform directions in the cone the sphere subtends; then the nearest intersection.
+    const float dist = std::sqrt(dist2);
+    const float oneMinusCosMax = coneOneMinusCos(r2 / dist2);
+    const Frame frame(toCenter / dist);
+    const Vec3 w = frame.toWorld(squareToUniformCone(u, oneMinusCosMax));
+    float t;
+    Vec3 n;
+    if (intersect(reference, w, c, 0.0f, std::numeric_limits<float>::infinity(), &t)) {
+        n = normalize(reference + w * t - c);
+    } else {
+        // Grazing direction lost to rounding: take the tangent point (the ray's closest
+        // approach), moved back along the ray by 1e-3·r so that it faces the reference: at the
+        // exact tangent point the cosine is zero with a rounding-noise sign, and AreaLight
+        // dropped the sample as back-facing about half the time.
+        n = normalize(normalize(reference + w * dot(toCenter, w) - c) - w * 1e-3f);
+    }
+    out->position = c + n * radius_;
+    out->normal = n;
+    out->pdf = uniformConePdf(oneMinusCosMax);
+    return true;
+}
+
+float Sphere::directionPdf(const Vec3& reference, const SurfaceHit& hit) const {
+    const Vec3 c = centerAt(hit.time);
+    const float dist2 = lengthSquared(c - reference);
+    const float r2 = radius_ * radius_;
+    if (dist2 <= r2 * (1.0f + 1e-4f)) return Shape::directionPdf(reference, hit);
+    return uniformConePdf(coneOneMinusCos(r2 / dist2));
+}
+
+}  // namespace rr

@@ -1,0 +1,35 @@
+// Analytic sphere: Embree user geometry with a double-precision quadratic so glass balls get
+// exact hit points and normals (n = (p − c) / r). Lights on spheres are sampled by the cone of
+// directions they subtend (uniform solid angle) when the reference point is outside.
+#pragma once
+
+#include "scene/shape.h"
+
+namespace rr {
+
+class Sphere final : public Shape {
+  public:
+    Sphere(const Vec3& center, float radius) : center_(center), radius_(radius) {}
+
+    RTCGeometry createGeometry(RTCDevice device) const override;
+    void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
+    float area() const override { return 4.0f * kPi * radius_ * radius_; }
+    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+    bool sampleDirection(const Vec3& reference, Vec2 u, float time,
+                         ShapeSample* out) const override;
+    float directionPdf(const Vec3& reference, const SurfaceHit& hit) const override;
+
+    Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
+    float radius() const { return radius_; }
+
+    // Nearest t in (tMin, tMax) where the ray meets the sphere centred at `center`; the
+    // quadratic is solved in double precision with the numerically stable root form.
+    bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& center, float tMin,
+                   float tMax, float* t) const;
+
+  private:
+    Vec3 center_;
+    float radius_;
+};
+
+}  // namespace rr

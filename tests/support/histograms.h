@@ -1,0 +1,48 @@
+// Histograms over the domains of the warps and sampling routines, with the expected count of
+// each cell obtained by integrating the claimed density numerically (midpoint rule on a
+// sub-grid; cells are small, so discontinuities inside a cell cost little accuracy).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "math/vector.h"
+
+namespace rr::test {
+
+// Directions binned by (z, φ) — equal-area cells, since dω = dz dφ — over z ∈ [zMin, 1].
+// The band must contain the density's support: samples below zMin go to an extra cell that
+// expects none. Place support boundaries inside cells, not on cell edges, so that rounding
+// cannot push a sample into a cell that expects nothing.
+class DirectionHistogram {
+  public:
+    DirectionHistogram(int zCells, int phiCells, double zMin = -1.0);
+    void add(const Vec3& w);
+    const std::vector<double>& counts() const { return counts_; }
+    // Expected counts for `samples` draws from the density `pdf` (per steradian).
+    std::vector<double> expected(const std::function<double(const Vec3&)>& pdf, double samples,
+                                 int subdivisions = 16) const;
+
+  private:
+    int zCells_, phiCells_;
+    double zMin_;
+    std::vector<double> counts_;  // zCells·phiCells + 1 (outside)
+};
+
+// Points of the rectangle [x0, x1] × [y0, y1] binned on a regular grid; samples outside go to
+// an extra cell.
+class PlaneHistogram {
+  public:
+    PlaneHistogram(int xCells, int yCells, double x0, double x1, double y0, double y1);
+    void add(const Vec2& p);
+    const std::vector<double>& counts() const { return counts_; }
+    std::vector<double> expected(const std::function<double(const Vec2&)>& pdf, double samples,
+                                 int subdivisions = 16) const;
+
+  private:
+    int xCells_, yCells_;
+    double x0_, x1_, y0_, y1_;
+    std::vector<double> counts_;
+};
+
+}  // namespace rr::test

@@ -1,0 +1,41 @@
+#include "support/scene_testing.h"
+
+#include <cmath>
+
+namespace rr::test {
+
+LoadedScene loadSceneText(const std::string& json) {
+    return loadScene(parseSceneText(json, "test scene"), AssetResolver::standard(TEST_SCENES_DIR));
+}
+
+LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string>& overrides) {
+    Json doc = readSceneFile(std::string(TEST_SCENES_DIR) + "/" + name);
+    for (const std::string& o : overrides)
+        applyOverride(doc, o);
+    return loadScene(doc, AssetResolver::standard(TEST_SCENES_DIR));
+}
+
+TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, int threads) {
+    TestRender r{Film(scene.render.width, scene.render.height), {}};
+    RenderOptions options;
+    options.spp = spp;
+    options.seed = seed;
+    options.threads = threads;
+    options.sampler = scene.render.sampler;
+    options.samplerSetSize = spp;
+    r.stats = render(*scene.scene, *scene.integrator, options, r.film);
+    return r;
+}
+
+Estimate regionMean(const Film& film, int c, int x0, int y0, int x1, int y1) {
+    double sum = 0, variance = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            sum += film.mean(x, y)[c];
+            variance += film.varianceOfMean(x, y)[c];
+        }
+    const double n = double(x1 - x0) * (y1 - y0);
+    return {sum / n, std::sqrt(variance) / n};
+}
+
+}  // namespace rr::test

@@ -1,0 +1,197 @@
+// Scenes whose pixel values are known in closed form (or by deterministic quadrature),
+// rendered by each integrator and compared with z-tests against the per-pixel variance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "support/chi2.h"
+#include "support/scene_testing.h"
+
+namespace rr::test {
+namespace {
+
+// Family-wise level 0.01 over every z-test in this file (Šidák); each test below documents
+// how many comparisons it makes. The number of comparisons: 4 furnace/sphere scenes × 2
+// integrators × (3 channels + 16 blocks) + 2 motion scenes × 2 integrators × 17 = 220.
+constexpr int kComparisons = 220;
+const double kZ = zThreshold(sidakAlpha(0.01, kComparisons));
+
+// Checks the image mean and the mean of each of 4×4 blocks against `expected` (per channel
+// for the image mean, luminance-free: channel 0 for blocks).
+void expectRegionsMatch(const Film& film, const Rgb& expected, const std::string& what) {
+    for (int c = 0; c < 3; ++c) {
+        const Estimate e = imageMean(film, c);
+        EXPECT_LE(std::abs(e.mean - expected[c]), kZ * e.standardError + 1e-5 * expected[c])
+            << what << " channel " << c << ": mean " << e.mean << " ± " << e.standardError
+            << ", expected " << expected[c];
+    }
+    const int bw = film.width() / 4, bh = film.height() / 4;
+    for (int by = 0; by < 4; ++by)
+        for (int bx = 0; bx < 4; ++bx) {
+            const Estimate e = regionMean(film, 0, bx * bw, by * bh, (bx + 1) * bw, (by + 1) * bh);
+            EXPECT_LE(std::abs(e.mean - expected[0]), kZ * e.standardError + 1e-5 * expected[0])
+                << what << " block (" << bx << ", " << by << "): " << e.mean << " ± "
+                << e.standardError << ", expected " << expected[0];
+        }
+}
+
+class AnalyticScenes : public ::testing::TestWithParam<std::string> {
+  protected:
+    std::string integrator() const { return GetParam(); }
+    std::string header(int spp) const {
+        return R"({"render": {"resolution": [16, 16], "spp": )" + std::to_string(spp) +
+               R"(, "max_depth": -1, "rr_depth": 1},
+                  "integrator": {"type": ")" +
+               integrator() + R"("},)";
+    }
+};
+
+// A closed diffuse enclosure of albedo ρ emitting Le everywhere: L = Le + ρL ⇒ Le / (1 − ρ).
+TEST_P(AnalyticScenes, FurnaceSphereRendersLeOverOneMinusAlbedo) {
+    const LoadedScene scene = loadSceneText(header(256) + R"(
+        "camera": {"position": [0.2, -0.1, 0.3], "look_at": [0, 0, -1], "fov": 100},
+        "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+                    "material": {"type": "lambert", "albedo": [0.5, 0.25, 0.75]},
+                    "emission": {"radiance": [1, 2, 0.5], "two_sided": true}}]})");
+    const TestRender r = renderScene(scene, 256);
+    expectRegionsMatch(r.film, Rgb(1 / 0.5f, 2 / 0.75f, 0.5f / 0.25f), "furnace sphere");
+}
+
+TEST_P(AnalyticScenes, FurnaceBoxOfQuadsRendersLeOverOneMinusAlbedo) {
+    std::string walls;
+    const char* faces[6] = {R"("corner": [-1, -1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0])",
+                            R"("corner": [-1, -1, 1], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0])",
+                            R"("corner": [-1, -1, -1], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2])",
+                            R"("corner": [1, -1, -1], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0])",
+                            R"("corner": [-1, -1, -1], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0])",
+                            R"("corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2])"};
+    for (int i = 0; i < 6; ++i)
+        walls += std::string(i ? "," : "") + R"({"type": "quad", )" + faces[i] +
+                 R"(, "material": "wall", "emission": {"radiance": 0.5, "two_sided": true}})";
+    const LoadedScene scene = loadSceneText(header(256) + R"(
+        "camera": {"position": [0.1, 0.2, 0.5], "look_at": [-1, -0.3, -1], "fov": 90},
+        "materials": {"wall": {"type": "lambert", "albedo": 0.6}},
+        "shapes": [)" + walls + "]}");
+    const TestRender r = renderScene(scene, 256);
+    expectRegionsMatch(r.film, Rgb(0.5f / 0.4f), "furnace box");
+}
+
+// A convex diffuse sphere inside a uniform emitter L: no self-illumination, so Lo = ρL.
+// The camera sees only the sphere (its angular radius 19.5° exceeds the 14.1° corner angle).
+TEST_P(AnalyticScenes, ConvexDiffuseSphereUnderUniformEmitterRendersAlbedoTimesL) {
+    const LoadedScene scene = loadSceneText(header(64) + R"(
+        "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 20},
+        "shapes": [
+          {"type": "sphere", "center": [0, 0, 0], "radius": 10,
+           "emission": {"radiance": [1.5, 1, 0.5], "two_sided": true}},
+          {"type": "sphere", "center": [0, 0, 0], "radius": 1,
+           "material": {"type": "lambert", "albedo": [0.6, 0.3, 0.9]}}]})");
+    const TestRender r = renderScene(scene, 64);
+    expectRegionsMatch(r.film, Rgb(0.9f, 0.3f, 0.45f), "sphere in uniform emitter");
+}
+
+// An emitter seen directly renders its radiance exactly, in every pixel.
+TEST_P(AnalyticScenes, EmissiveQuadSeenDirectlyRendersItsExactRadiance) {
+    for (const char* camera :
+         {R"("type": "pinhole")",
+          R"("type": "thin_lens", "aperture_radius": 0.2, "focus_distance": 1)"}) {
+        const LoadedScene scene = loadSceneText(header(4) + R"(
+            "camera": {)" + camera + R"(, "position": [0, 0, 1], "look_at": [0, 0, 0], "fov": 60},
+            "shapes": [{"type": "quad", "corner": [-5, -5, 0], "edge_u": [10, 0, 0],
+                        "edge_v": [0, 10, 0], "emission": {"radiance": [2, 3, 4]}}]})");
+        const TestRender r = renderScene(scene, 4);
+        for (int y = 0; y < r.film.height(); ++y)
+            for (int x = 0; x < r.film.width(); ++x) {
+                ASSERT_EQ(r.film.mean(x, y), Rgb(2, 3, 4)) << camera << " pixel " << x << "," << y;
+                ASSERT_EQ(r.film.varianceOfMean(x, y), Rgb(0.0f));
+            }
+    }
+}
+
+// Motion blur: an emitter translating over the shutter. The expected pixel value is L times
+// the fraction of (film position, time) whose ray meets the moving shape, computed by
+// deterministic quadrature with an analytic hit test independent of Embree.
+// The hit test receives the scene time computed here from the shutter settings, not the
+// camera's, so the camera's shutter mapping is under test too.
+using MovingHitTest = std::function<bool(const Ray&, float time)>;
+
+double coveredFraction(const Camera& camera, int px, int py, const MovingHitTest& hits) {
+    constexpr int kFilm = 12, kTime = 48;
+    const float open = camera.settings().shutterOpen, close = camera.settings().shutterClose;
+    int covered = 0;
+    for (int a = 0; a < kFilm; ++a)
+        for (int b = 0; b < kFilm; ++b)
+            for (int t = 0; t < kTime; ++t) {
+                const Vec2 film(px + (a + 0.5f) / kFilm, py + (b + 0.5f) / kFilm);
+                const float u = (t + 0.5f) / kTime;
+                covered +=
+                    hits(camera.generateRay(film, Vec2(0.5f, 0.5f), u), open + u * (close - open));
+            }
+    return double(covered) / (kFilm * kFilm * kTime);
+}
+
+void expectMotionBlurMatchesQuadrature(const LoadedScene& scene, double radiance,
+                                       const MovingHitTest& hits) {
+    const TestRender r = renderScene(scene, 256);
+    const Camera& camera = scene.scene->camera();
+    ASSERT_TRUE(scene.scene->features().motionBlur);
+    double expectedTotal = 0;
+    Film expected(r.film.width(), r.film.height());
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x) {
+            const double f = radiance * coveredFraction(camera, x, y, hits);
+            expected.add(x, y, Rgb(float(f)));
+            expectedTotal += f;
+        }
+    const Estimate e = imageMean(r.film, 0);
+    const double mean = expectedTotal / (r.film.width() * r.film.height());
+    // Quadrature error: the shape's edge sweeps cells of the 12×12×48 grid; its effect on the
+    // image mean is below 1e-3 relative, far under the Monte Carlo error tested here.
+    EXPECT_LE(std::abs(e.mean - mean), kZ * e.standardError + 1e-3 * mean)
+        << "image mean " << e.mean << " ± " << e.standardError << ", quadrature " << mean;
+    const int bw = r.film.width() / 4, bh = r.film.height() / 4;
+    for (int by = 0; by < 4; ++by)
+        for (int bx = 0; bx < 4; ++bx) {
+            const Estimate got =
+                regionMean(r.film, 0, bx * bw, by * bh, (bx + 1) * bw, (by + 1) * bh);
+            const Estimate want =
+                regionMean(expected, 0, bx * bw, by * bh, (bx + 1) * bw, (by + 1) * bh);
+            EXPECT_LE(std::abs(got.mean - want.mean), kZ * got.standardError + 1e-3 * radiance)
+                << "block (" << bx << ", " << by << "): " << got.mean << " ± " << got.standardError
+                << ", quadrature " << want.mean;
+        }
+}
+
+TEST_P(AnalyticScenes, MovingQuadEmitterMatchesQuadrature) {
+    const LoadedScene scene = loadSceneText(header(256) + R"(
+        "camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "fov": 60, "shutter": [0.2, 0.9]},
+        "shapes": [{"type": "quad", "corner": [-1, -0.4, 0], "edge_u": [0.8, 0, 0],
+                    "edge_v": [0, 0.8, 0], "emission": {"radiance": 3},
+                    "motion": {"translate": [1.5, 0.3, 0]}}]})");
+    expectMotionBlurMatchesQuadrature(scene, 3.0, [](const Ray& ray, float time) {
+        const float t = -ray.origin.z / ray.direction.z;
+        const Vec3 p = ray.origin + ray.direction * t - Vec3(1.5f, 0.3f, 0) * time;
+        return p.x >= -1 && p.x <= -0.2f && p.y >= -0.4f && p.y <= 0.4f;
+    });
+}
+
+TEST_P(AnalyticScenes, MovingSphereEmitterMatchesQuadrature) {
+    const LoadedScene scene = loadSceneText(header(256) + R"(
+        "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 50, "shutter": [0, 1]},
+        "shapes": [{"type": "sphere", "center": [-0.6, 0.1, 0], "radius": 0.35,
+                    "emission": {"radiance": 2, "two_sided": true},
+                    "motion": {"translate": [1.2, -0.2, 0.3]}}]})");
+    expectMotionBlurMatchesQuadrature(scene, 2.0, [](const Ray& ray, float time) {
+        const Vec3 c = Vec3(-0.6f, 0.1f, 0) + Vec3(1.2f, -0.2f, 0.3f) * time;
+        const Vec3 o = ray.origin - c;
+        const float b = dot(o, ray.direction), cc = dot(o, o) - 0.35f * 0.35f;
+        return b * b - cc >= 0;
+    });
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, AnalyticScenes, ::testing::Values("path", "path_mis"),
+                         [](const auto& param) { return param.param; });
+
+}  // namespace
+}  // namespace rr::test

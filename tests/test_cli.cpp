@@ -1,0 +1,220 @@
+// The renderer binary end to end: outputs and metadata, exit status 2 with one message for bad
+// input and nothing written, time-limited renders, Ctrl-C, and thread-count independence.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "io/exr_io.h"
+#include "support/scratch.h"
+
+extern char** environ;
+
+namespace rr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kScene = std::string(TEST_SCENES_DIR) + "/cornell_spheres.json";
+
+struct Process {
+    pid_t pid = -1;
+    fs::path stderrFile;
+};
+
+// Starts the renderer with `args`, stderr to a file in `dir`.
+Process start(const std::vector<std::string>& args, const fs::path& dir) {
+    Process p;
+    p.stderrFile = dir / "stderr.txt";
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, p.stderrFile.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    std::vector<std::string> all{RENDERER_BINARY};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all)
+        argv.push_back(a.data());
+    argv.push_back(nullptr);
+    EXPECT_EQ(posix_spawn(&p.pid, RENDERER_BINARY, &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    return p;
+}
+
+int wait(const Process& p, std::string* errors = nullptr) {
+    int status = 0;
+    waitpid(p.pid, &status, 0);
+    if (errors) {
+        std::ifstream in(p.stderrFile);
+        std::ostringstream s;
+        s << in.rdbuf();
+        *errors = s.str();
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int run(const std::vector<std::string>& args, const fs::path& dir, std::string* errors = nullptr) {
+    return wait(start(args, dir), errors);
+}
+
+std::string attribute(const ExrImage& image, const std::string& name) {
+    const auto& v = image.attributes.at(name);
+    if (const auto* s = std::get_if<std::string>(&v)) return *s;
+    if (const auto* i = std::get_if<int>(&v)) return std::to_string(*i);
+    std::ostringstream o;
+    o << std::get<double>(v);
+    return o.str();
+}
+
+TEST(Cli, RenderWritesExrWithChannelsAndMetadataAndPngPreview) {
+    const fs::path dir = scratchDirectory();
+    std::string errors;
+    ASSERT_EQ(run({"render", kScene, "--resolution", "24x16", "--spp", "4", "--seed", "3", "--set",
+                   "/render/max_depth=5", "--out", (dir / "out.exr").string()},
+                  dir, &errors),
+              0)
+        << errors;
+    EXPECT_TRUE(fs::is_regular_file(dir / "out.png"));
+    const ExrImage image = readExr(dir / "out.exr");
+    EXPECT_EQ(image.width, 24);
+    EXPECT_EQ(image.height, 16);
+    for (const char* c : {"R", "G", "B", "variance.R", "variance.G", "variance.B", "samples"})
+        EXPECT_TRUE(image.channels.count(c)) << c;
+    EXPECT_EQ(image.channels.at("samples")[0], 4.0f);
+    EXPECT_EQ(attribute(image, "renderer.spp"), "4");
+    EXPECT_EQ(attribute(image, "renderer.seed"), "3");
+    EXPECT_EQ(attribute(image, "renderer.integrator"), "path_mis");
+    EXPECT_NE(attribute(image, "renderer.integratorParameters").find("\"max_depth\":5"),
+              std::string::npos);
+    EXPECT_NE(attribute(image, "renderer.overrides").find("/render/max_depth=5"),
+              std::string::npos);
+    EXPECT_EQ(attribute(image, "renderer.sceneFileSha256").size(), 64u);
+    EXPECT_EQ(attribute(image, "renderer.features"), "none");
+    for (const char* key : {"renderer.version", "renderer.scene", "renderer.sceneSha256",
+                            "renderer.threads", "renderer.renderTime", "renderer.sampler"})
+        EXPECT_TRUE(image.attributes.count(key)) << key;
+    // Non-interactive stderr: exactly one summary line.
+    EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+struct BadRun {
+    const char* what;
+    std::vector<std::string> args;
+    const char* mentions;
+};
+
+void PrintTo(const BadRun& b, std::ostream* os) {
+    *os << b.what;
+}
+
+class CliBadInput : public ::testing::TestWithParam<BadRun> {};
+
+TEST_P(CliBadInput, ExitsWithStatusTwoOneMessageAndWritesNothing) {
+    const fs::path dir = scratchDirectory();
+    const fs::path malformed = dir / "malformed.json";
+    std::ofstream(malformed) << "{ \"camera\": { \"fov\": 40,, } }";
+    std::vector<std::string> args;
+    for (std::string a : GetParam().args) {
+        if (a == "SCENE") a = kScene;
+        if (a == "MALFORMED") a = malformed.string();
+        args.push_back(a);
+    }
+    args.insert(args.end(), {"--out", (dir / "out" / "image.exr").string()});
+    std::string errors;
+    EXPECT_EQ(run(args, dir, &errors), 2) << errors;
+    EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+    EXPECT_NE(errors.find(GetParam().mentions), std::string::npos) << errors;
+    EXPECT_FALSE(fs::exists(dir / "out")) << "nothing may be written";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    All, CliBadInput,
+    ::testing::Values(
+        BadRun{"malformed JSON", {"render", "MALFORMED"}, "line 1"},
+        BadRun{
+            "missing scene file", {"render", "/nonexistent/scene.json"}, "/nonexistent/scene.json"},
+        BadRun{"negative radius",
+               {"render", "SCENE", "--set", "/shapes/8/radius=-1"},
+               "/shapes/8/radius"},
+        BadRun{"unknown key", {"render", "SCENE", "--set", "/camera/zoom=2"}, "/camera/zoom"},
+        BadRun{
+            "unknown integrator", {"render", "SCENE", "--integrator", "bdpt"}, "/integrator/type"},
+        BadRun{
+            "missing mesh",
+            {"render", "SCENE", "--set",
+             "/shapes/8={\"type\":\"mesh\",\"file\":\"meshes/none.ply\",\"material\":\"white\"}"},
+            "/shapes/8/file"},
+        BadRun{"bad --set pointer",
+               {"render", "SCENE", "--set", "/camera/lens/radius=1"},
+               "/camera/lens/radius"},
+        BadRun{
+            "bad --resolution", {"render", "SCENE", "--resolution", "12by8"}, "/render/resolution"},
+        BadRun{"zero spp", {"render", "SCENE", "--spp", "0"}, "--spp"},
+        BadRun{"unknown option", {"render", "SCENE", "--sppp", "3"}, "--sppp"}),
+    [](const ::testing::TestParamInfo<BadRun>& param) {
+        std::string name = param.param.what;
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return name;
+    });
+
+TEST(Cli, TimeLimitRecordsTheSamplesReached) {
+    const fs::path dir = scratchDirectory();
+    std::string errors;
+    ASSERT_EQ(run({"render", kScene, "--resolution", "32x32", "--time-limit", "0.5", "--out",
+                   (dir / "t.exr").string(), "--no-preview"},
+                  dir, &errors),
+              0)
+        << errors;
+    const ExrImage image = readExr(dir / "t.exr");
+    const int spp = std::stoi(attribute(image, "renderer.spp"));
+    EXPECT_GE(spp, 1);
+    for (float s : image.channels.at("samples"))
+        ASSERT_EQ(s, float(spp));
+    EXPECT_EQ(attribute(image, "renderer.timeLimit"), "0.5");
+}
+
+TEST(Cli, InterruptSavesAValidImageOfTheSamplesReached) {
+    const fs::path dir = scratchDirectory();
+    const Process p = start({"render", kScene, "--resolution", "64x64", "--spp", "1000000", "--out",
+                             (dir / "i.exr").string(), "--no-preview"},
+                            dir);
+    // Wait until rendering has started (the scene loads in milliseconds), then interrupt.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    kill(p.pid, SIGINT);
+    std::string errors;
+    EXPECT_EQ(wait(p, &errors), 130) << errors;
+    const ExrImage image = readExr(dir / "i.exr");
+    const int spp = std::stoi(attribute(image, "renderer.spp"));
+    EXPECT_GE(spp, 1);
+    EXPECT_LT(spp, 1000000);
+    EXPECT_EQ(attribute(image, "renderer.interrupted"), "1");
+    for (float s : image.channels.at("samples"))
+        ASSERT_EQ(s, float(spp));
+}
+
+TEST(Cli, ThreadCountDoesNotChangePixels) {
+    const fs::path dir = scratchDirectory();
+    for (const char* t : {"1", "2"})
+        ASSERT_EQ(run({"render", kScene, "--resolution", "40x24", "--spp", "6", "--threads", t,
+                       "--out", (dir / (std::string("t") + t + ".exr")).string(), "--no-preview"},
+                      dir),
+                  0);
+    const ExrImage a = readExr(dir / "t1.exr"), b = readExr(dir / "t2.exr");
+    for (const auto& [name, data] : a.channels)
+        EXPECT_EQ(data, b.channels.at(name)) << name;
+}
+
+}  // namespace
+}  // namespace rr::test

@@ -1,0 +1,78 @@
+// EXR output: channels and metadata survive a round trip; writes are atomic.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/exr_io.h"
+#include "render/render_output.h"
+#include "support/scratch.h"
+
+namespace rr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Exr, FilmChannelsAndMetadataRoundTrip) {
+    Film film(5, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) {
+            film.add(x, y, Rgb(float(x), float(y), 0.5f));
+            film.add(x, y, Rgb(float(x) + 1, float(y), 1.5f));
+        }
+    ExrImage image = filmToExr(film);
+    image.attributes["renderer.integrator"] = std::string("path_mis");
+    image.attributes["renderer.spp"] = 2;
+    image.attributes["renderer.renderTime"] = 1.25;
+
+    const fs::path file = scratchDirectory() / "image.exr";
+    writeExr(file, image);
+    const ExrImage back = readExr(file);
+    EXPECT_EQ(back.width, 5);
+    EXPECT_EQ(back.height, 3);
+    for (const char* name : {"R", "G", "B", "variance.R", "variance.G", "variance.B", "samples"})
+        ASSERT_EQ(back.channels.at(name), image.channels.at(name)) << name;
+    // Pixel (2, 1): samples (2,1,.5) and (3,1,1.5): mean (2.5, 1, 1), variance of the mean
+    // = sample variance / n = 0.5 / 2 for R and B, 0 for G.
+    const size_t i = 1 * 5 + 2;
+    EXPECT_FLOAT_EQ(back.channels.at("R")[i], 2.5f);
+    EXPECT_FLOAT_EQ(back.channels.at("variance.R")[i], 0.25f);
+    EXPECT_FLOAT_EQ(back.channels.at("variance.G")[i], 0.0f);
+    EXPECT_FLOAT_EQ(back.channels.at("variance.B")[i], 0.25f);
+    EXPECT_FLOAT_EQ(back.channels.at("samples")[i], 2.0f);
+    EXPECT_EQ(std::get<std::string>(back.attributes.at("renderer.integrator")), "path_mis");
+    EXPECT_EQ(std::get<int>(back.attributes.at("renderer.spp")), 2);
+    EXPECT_DOUBLE_EQ(std::get<double>(back.attributes.at("renderer.renderTime")), 1.25);
+}
+
+TEST(Exr, WriteLeavesNoTemporaryFiles) {
+    const fs::path dir = scratchDirectory();
+    ExrImage image = filmToExr(Film(4, 4));
+    writeExr(dir / "a.exr", image);
+    writeExr(dir / "a.exr", image);  // replacing an existing file
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        ++files;
+        EXPECT_EQ(entry.path().filename(), "a.exr");
+    }
+    EXPECT_EQ(files, 1);
+}
+
+TEST(Exr, FailedWriteThrowsAndLeavesNothing) {
+    const fs::path dir = scratchDirectory();
+    ExrImage image = filmToExr(Film(4, 4));
+    image.channels["broken"] = std::vector<float>(3);  // wrong size: the writer refuses
+    EXPECT_THROW(writeExr(dir / "b.exr", image), std::exception);
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Exr, ReadingAMissingFileNamesIt) {
+    try {
+        readExr("/nonexistent/file.exr");
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/file.exr"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace rr::test

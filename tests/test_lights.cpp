@@ -1,0 +1,659 @@
+// End-to-end tests of light sampling: directions drawn by light->sample() are histogrammed and
+// compared (χ²) with the density that light->pdf() reports for the surface point a ray in each
+// direction actually hits (scene.intersect), so sample() and pdf() are checked against each
+// other and against the geometry. Also: radiance, pdf at the sampled point, point lights,
+// power, and light selection.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "math/frame.h"
+#include "sampling/hash.h"
+#include "scene/lights/area_light.h"
+#include "scene/shape.h"
+#include "scene/shapes/triangle_mesh.h"
+#include "support/chi2.h"
+#include "support/histograms.h"
+#include "support/scene_testing.h"
+
+namespace rr::test {
+namespace {
+
+// Every χ² run in this file: sphere from outside at 3 distances, from inside, quad, disk,
+// two-sided disk from behind, triangle-mesh roof (8 light-sampling runs), uniform and power
+// selection (2), and 3 negative controls.
+constexpr int kRuns = 13;
+const double kAlpha = sidakAlpha(0.01, kRuns);
+constexpr int kSamples = 1000000;
+
+float uniform(uint64_t seed, uint64_t i, uint64_t dim) {
+    return toUnitFloat(pcgOutput(hashKeys(seed, i, dim)));
+}
+Vec2 uniform2(uint64_t seed, uint64_t i) {
+    return {uniform(seed, i, 0), uniform(seed, i, 1)};
+}
+
+void expectFits(const Chi2Outcome& r, const std::string& what) {
+    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
+}
+void expectRejects(const Chi2Outcome& r, const std::string& what) {
+    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
+}
+
+// A scene with the given shapes (JSON array body) and lights, no camera-facing requirements.
+LoadedScene makeScene(const std::string& shapes, const std::string& lights = "",
+                      const std::string& selection = "power") {
+    return loadSceneText(R"({"render": {"resolution": [4, 4], "light_selection": ")" + selection +
+                         R"("},
+        "camera": {"position": [0, 0, 20], "look_at": [0, 0, 0]},
+        "shapes": [)" + shapes +
+                         "]" + (lights.empty() ? "" : R"(, "lights": [)" + lights + "]") + "}");
+}
+
+bool hitsLight(const Scene& scene, const Light& light, const Vec3& origin, const Vec3& dir,
+               SurfaceHit* hit) {
+    if (!scene.intersect(Ray{origin, dir}, hit)) return false;
+    return hit->shape != nullptr && hit->shape->areaLight() == &light;
+}
+
+// --- Expected counts on a DirectionHistogram's cells ------------------------------------------
+
+// The cells of DirectionHistogram(zCells, phiCells, zMin): cell (iz, ip) covers
+// z ∈ zMin + [iz, iz+1)·dz, φ ∈ [ip, ip+1)·dφ and is counts()[iz·phiCells + ip]; the last entry
+// is the outside cell. (Checked against DirectionHistogram::add by a test below.)
+struct DirectionCells {
+    int zCells, phiCells;
+    double zMin;
+    double dz() const { return (1.0 - zMin) / zCells; }
+    double dphi() const { return 2 * M_PI / phiCells; }
+    Vec3 direction(double z, double phi) const {
+        const double r = std::sqrt(std::max(0.0, 1 - z * z));
+        return Vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+    }
+};
+
+// Midpoint rule on an s × s sub-grid of one cell; also tells whether the density was zero at
+// some sub-points and non-zero at others.
+double integrateCell(const DirectionCells& g, int iz, int ip,
+                     const std::function<double(const Vec3&)>& pdf, int s, bool* mixed) {
+    double mass = 0;
+    int zeros = 0;
+    for (int a = 0; a < s; ++a)
+        for (int b = 0; b < s; ++b) {
+            const double z = g.zMin + (iz + (a + 0.5) / s) * g.dz();
+            const double phi = (ip + (b + 0.5) / s) * g.dphi();
+            const double p = pdf(g.direction(z, phi));
+            mass += p;
+            zeros += p == 0;
+        }
+    if (mixed) *mixed = zeros > 0 && zeros < s * s;
+    return mass * (g.dz() / s) * (g.dphi() / s);
+}
+
+// Expected counts with the histogram's 16² midpoint rule, refined to 96² sub-points on cells
+// at the edge of the support (mixed cells and the empty cells next to non-empty ones): the
+// outline of a quad or disk crosses cells, and a cell holding a sliver of the support must not
+// be given an expected count of zero.
+std::vector<double> expectedCounts(const DirectionCells& g,
+                                   const std::function<double(const Vec3&)>& pdf, double samples) {
+    const int n = g.zCells * g.phiCells;
+    std::vector<double> mass(n);
+    std::vector<char> mixed(n);
+    for (int iz = 0; iz < g.zCells; ++iz)
+        for (int ip = 0; ip < g.phiCells; ++ip) {
+            bool m;
+            mass[iz * g.phiCells + ip] = integrateCell(g, iz, ip, pdf, 16, &m);
+            mixed[iz * g.phiCells + ip] = m;
+        }
+    for (int iz = 0; iz < g.zCells; ++iz)
+        for (int ip = 0; ip < g.phiCells; ++ip) {
+            const int i = iz * g.phiCells + ip;
+            bool refine = mixed[i];
+            for (int dz = -1; dz <= 1 && !refine; ++dz)
+                for (int dp = -1; dp <= 1 && !refine; ++dp) {
+                    const int jz = iz + dz, jp = (ip + dp + g.phiCells) % g.phiCells;
+                    if (jz < 0 || jz >= g.zCells) continue;
+                    refine = (mass[i] == 0) != (mass[jz * g.phiCells + jp] == 0);
+                }
+            if (refine) mass[i] = integrateCell(g, iz, ip, pdf, 96, nullptr);
+        }
+    std::vector<double> out(size_t(n) + 1, 0.0);
+    for (int i = 0; i < n; ++i)
+        out[i] = mass[i] * samples;
+    return out;
+}
+
+// --- The light-sampling χ² run -----------------------------------------------------------------
+
+struct LightRun {
+    Chi2Outcome outcome;
+    int failedSamples = 0;    // sample() returned false
+    double expectedMass = 0;  // ∫ pdf over the directions that hit the light
+};
+
+// Samples `light` from `reference` and histograms the directions in a frame whose +z is `axis`;
+// the expected density in a direction is light.pdf() at the point a ray from `reference`
+// hits, or zero if the ray misses the light. `pdfOf` may replace light.pdf (negative controls).
+LightRun runLightChi2(const Scene& scene, const Light& light, const Vec3& reference,
+                      const Vec3& axis, const DirectionCells& cells, uint64_t seed,
+                      const std::function<double(const SurfaceHit&)>& pdfOf = nullptr) {
+    const Frame frame(normalize(axis));
+    LightRun run;
+    DirectionHistogram h(cells.zCells, cells.phiCells, cells.zMin);
+    for (int i = 0; i < kSamples; ++i) {
+        LightSample ls;
+        if (!light.sample(reference, uniform2(seed, i), 0.0f, &ls)) {
+            ++run.failedSamples;
+            continue;
+        }
+        h.add(frame.toLocal(ls.direction));
+    }
+    const auto pdf = [&](const Vec3& local) -> double {
+        SurfaceHit hit;
+        if (!hitsLight(scene, light, reference, normalize(frame.toWorld(local)), &hit)) return 0;
+        return pdfOf ? pdfOf(hit) : light.pdf(reference, hit);
+    };
+    const double accepted = kSamples - run.failedSamples;
+    const std::vector<double> expected = expectedCounts(cells, pdf, accepted);
+    for (double e : expected)
+        run.expectedMass += e / accepted;
+    run.outcome = chi2GoodnessOfFit(h.counts(), expected);
+    return run;
+}
+
+void expectLightFits(const LightRun& run, const std::string& what) {
+    EXPECT_EQ(run.failedSamples, 0) << what;
+    EXPECT_NEAR(run.expectedMass, 1.0, 2e-3) << what << ": the pdf over the light's directions";
+    expectFits(run.outcome, what);
+}
+
+// 1 − cos θmax of the cone subtended by a sphere at distance d = ratio · radius (in double).
+double sphereCone(double ratio) {
+    const double sin2 = 1.0 / (ratio * ratio);
+    return sin2 / (1.0 + std::sqrt(1.0 - sin2));
+}
+
+// Cells for a density whose support is the cone z ≥ 1 − c: 24 z-cells of which the cone spans
+// 20.5, so its edge is in the middle of a cell.
+DirectionCells coneCells(double oneMinusCos) {
+    const double dz = oneMinusCos / 20.5;
+    return {24, 48, std::max(-1.0, 1.0 - 24 * dz)};
+}
+
+// Smallest z (in the frame of `axis`) of the directions from `reference` to `points`, minus a
+// margin: the band of a histogram covering a planar light.
+double lowestZ(const Vec3& reference, const Vec3& axis, const std::vector<Vec3>& points) {
+    double z = 1;
+    for (const Vec3& p : points)
+        z = std::min(z, double(dot(normalize(p - reference), axis)));
+    return std::max(-1.0, z - 0.02);
+}
+
+// --- Sphere lights ----------------------------------------------------------------------------
+
+const char* kSphere =
+    R"({"type": "sphere", "center": [0.5, -0.25, 1], "radius": 0.8,
+        "emission": {"radiance": [1, 2, 3]}})";
+const Vec3 kSphereCenter(0.5f, -0.25f, 1.0f);
+constexpr float kSphereRadius = 0.8f;
+
+// Reference points outside at d = 1.05 r (very wide cone), 3 r, 30 r (narrow cone), along an
+// oblique direction.
+class SphereFromOutside : public ::testing::TestWithParam<float> {};
+
+TEST_P(SphereFromOutside, DirectionsFollowPdf) {
+    const LoadedScene s = makeScene(kSphere);
+    const Light& light = *s.scene->lights()[0];
+    const float d = GetParam() * kSphereRadius;
+    const Vec3 reference = kSphereCenter + normalize(Vec3(1, 2, -3)) * d;
+    const double c = sphereCone(GetParam());
+    const LightRun run = runLightChi2(*s.scene, light, reference, kSphereCenter - reference,
+                                      coneCells(c), 10 + uint64_t(GetParam() * 100));
+    expectLightFits(run, "sphere from outside, d = " + std::to_string(GetParam()) + " r");
+}
+
+INSTANTIATE_TEST_SUITE_P(Distances, SphereFromOutside, ::testing::Values(1.05f, 3.0f, 30.0f));
+
+// Inside a two-sided emissive sphere the light falls back to area sampling: directions over the
+// whole sphere, with density dist² / (A cos θ).
+TEST(SphereFromInside, DirectionsFollowPdf) {
+    const LoadedScene s = makeScene(
+        R"({"type": "sphere", "center": [0.5, -0.25, 1], "radius": 0.8,
+            "emission": {"radiance": [1, 2, 3], "two_sided": true}})");
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 reference = kSphereCenter + Vec3(0.3f, -0.2f, 0.4f);
+    const LightRun run = runLightChi2(*s.scene, light, reference, kSphereCenter - reference,
+                                      DirectionCells{40, 50, -1.0}, 20);
+    expectLightFits(run, "two-sided sphere from inside");
+}
+
+// A one-sided sphere emits outwards only: from inside, every sample carries no radiance.
+TEST(SphereFromInside, OneSidedSphereGivesNoSamples) {
+    const LoadedScene s = makeScene(kSphere);
+    const Light& light = *s.scene->lights()[0];
+    for (int i = 0; i < 1000; ++i) {
+        LightSample ls;
+        EXPECT_FALSE(light.sample(kSphereCenter + Vec3(0.1f, 0.2f, 0), uniform2(21, i), 0, &ls));
+    }
+}
+
+// --- Planar lights ------------------------------------------------------------------------------
+
+const char* kQuad =
+    R"({"type": "quad", "corner": [-1, -0.5, 0], "edge_u": [2, 0, 0], "edge_v": [0, 1.5, 0.3],
+        "emission": {"radiance": [1, 2, 3]}})";
+const Vec3 kQuadCorner(-1, -0.5f, 0), kQuadU(2, 0, 0), kQuadV(0, 1.5f, 0.3f);
+
+TEST(QuadLight, DirectionsFollowPdf) {
+    const LoadedScene s = makeScene(kQuad);
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 normal = normalize(cross(kQuadU, kQuadV));
+    const Vec3 reference(0.3f, 0.4f, 1.2f);  // in front, above the quad's interior
+    const Vec3 axis = -normal;
+    const std::vector<Vec3> corners = {kQuadCorner, kQuadCorner + kQuadU, kQuadCorner + kQuadV,
+                                       kQuadCorner + kQuadU + kQuadV};
+    const LightRun run = runLightChi2(*s.scene, light, reference, axis,
+                                      {30, 48, lowestZ(reference, axis, corners)}, 30);
+    expectLightFits(run, "quad");
+}
+
+TEST(QuadLight, OneSidedQuadGivesNoSamplesFromBehind) {
+    const LoadedScene s = makeScene(kQuad);
+    const Light& light = *s.scene->lights()[0];
+    for (int i = 0; i < 1000; ++i) {
+        LightSample ls;
+        EXPECT_FALSE(light.sample(Vec3(0.3f, 0.4f, -1.0f), uniform2(31, i), 0, &ls));
+    }
+}
+
+const Vec3 kDiskCenter(0.2f, -0.1f, 0.4f);
+const Vec3 kDiskNormal = normalize(Vec3(0.3f, -0.2f, 1.0f));
+constexpr float kDiskRadius = 0.8f;
+std::string diskJson(bool twoSided) {
+    return R"({"type": "disk", "center": [0.2, -0.1, 0.4], "normal": [0.3, -0.2, 1],
+               "radius": 0.8, "emission": {"radiance": [1, 2, 3], "two_sided": )" +
+           std::string(twoSided ? "true" : "false") + "}}";
+}
+std::vector<Vec3> diskRim() {
+    const Frame f(kDiskNormal);
+    std::vector<Vec3> rim;
+    for (int k = 0; k < 360; ++k)
+        rim.push_back(kDiskCenter +
+                      f.toWorld(Vec3(std::cos(k * kPi / 180), std::sin(k * kPi / 180), 0)) *
+                          kDiskRadius);
+    return rim;
+}
+
+// Off-axis reference in front of the disk: the projection of the disk is not a cone.
+TEST(DiskLight, DirectionsFollowPdf) {
+    const LoadedScene s = makeScene(diskJson(false));
+    const Light& light = *s.scene->lights()[0];
+    const Frame f(kDiskNormal);
+    const Vec3 reference = kDiskCenter + f.toWorld(Vec3(0.5f, 0.2f, 0.7f));
+    const LightRun run = runLightChi2(*s.scene, light, reference, -kDiskNormal,
+                                      {30, 48, lowestZ(reference, -kDiskNormal, diskRim())}, 40);
+    expectLightFits(run, "disk");
+}
+
+// A two-sided disk seen from behind, far off-axis (the reference's projection is outside the
+// disk, so the support does not contain the pole).
+TEST(DiskLight, TwoSidedDiskFromBehindFollowsPdf) {
+    const LoadedScene s = makeScene(diskJson(true));
+    const Light& light = *s.scene->lights()[0];
+    const Frame f(kDiskNormal);
+    const Vec3 reference = kDiskCenter + f.toWorld(Vec3(1.1f, -0.4f, -0.5f));
+    const Vec3 axis = kDiskCenter - reference;
+    DirectionCells cells{30, 48, lowestZ(reference, normalize(axis), diskRim())};
+    const LightRun run = runLightChi2(*s.scene, light, reference, axis, cells, 41);
+    expectLightFits(run, "two-sided disk from behind");
+}
+
+// A triangle-mesh emitter (built directly: no mesh file needed): a roof of six triangles of
+// different areas, two-sided, seen from above so that every ray meets at most one triangle.
+// Area sampling picks a triangle by area (Distribution1D) and a point in it (Heitz's map).
+MeshData roofMesh() {
+    MeshData m;
+    m.positions = {{-1, 0, 0.5f}, {1, 0, 0.5f}, {-1, 1, 0},     {0.4f, 1, 0},
+                   {1, 1, 0},     {-1, -1, 0},  {-0.5f, -1, 0}, {1, -1, 0}};
+    m.indices = {0, 1, 3, 0, 3, 2, 1, 4, 3,   // the y > 0 side
+                 0, 6, 1, 0, 5, 6, 1, 6, 7};  // the y < 0 side
+    return m;
+}
+double roofArea() {
+    const MeshData m = roofMesh();
+    double a = 0;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        const Vec3 &p0 = m.positions[m.indices[t]], &p1 = m.positions[m.indices[t + 1]],
+                   &p2 = m.positions[m.indices[t + 2]];
+        a += 0.5 * length(cross(p1 - p0, p2 - p0));
+    }
+    return a;
+}
+struct BuiltScene {
+    std::unique_ptr<Scene> scene;
+};
+BuiltScene makeRoofScene() {
+    SceneBuilder b;
+    b.setCamera(CameraSettings{}, 4, 4);
+    b.addShape(std::make_unique<TriangleMesh>(roofMesh()), nullptr, Rgb(1, 2, 3), true);
+    return {b.build(LightSelection::Power)};
+}
+const Vec3 kRoofReference(0.2f, 0.3f, 2.0f);
+
+TEST(MeshLight, DirectionsFollowPdf) {
+    const BuiltScene s = makeRoofScene();
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 axis(0, 0, -1);
+    const LightRun run =
+        runLightChi2(*s.scene, light, kRoofReference, axis,
+                     {30, 48, lowestZ(kRoofReference, axis, roofMesh().positions)}, 45);
+    expectLightFits(run, "triangle-mesh roof");
+}
+
+// --- Negative controls ------------------------------------------------------------------------
+
+// Cone samples judged with the area-sampling density (a sample/pdf strategy mismatch).
+TEST(LightChi2NegativeControl, SphereConeSamplesRejectAreaSamplingPdf) {
+    const LoadedScene s = makeScene(kSphere);
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 reference = kSphereCenter + normalize(Vec3(1, 2, -3)) * (3.0f * kSphereRadius);
+    const float area = 4 * kPi * kSphereRadius * kSphereRadius;
+    const LightRun run =
+        runLightChi2(*s.scene, light, reference, kSphereCenter - reference,
+                     coneCells(sphereCone(3.0)), 310, [&](const SurfaceHit& hit) {
+                         return double(areaToSolidAngle(1.0f / area, reference, hit.position,
+                                                        hit.geometricNormal));
+                     });
+    expectRejects(run.outcome, "sphere cone samples vs area-sampling pdf");
+}
+
+// Quad samples judged with a density that forgets the cosine of the area-to-solid-angle
+// conversion, renormalised so that only the shape of the density is wrong.
+TEST(LightChi2NegativeControl, QuadSamplesRejectPdfWithoutCosine) {
+    const LoadedScene s = makeScene(kQuad);
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 normal = normalize(cross(kQuadU, kQuadV));
+    const Vec3 reference(0.3f, 0.4f, 1.2f);
+    const std::vector<Vec3> corners = {kQuadCorner, kQuadCorner + kQuadU, kQuadCorner + kQuadV,
+                                       kQuadCorner + kQuadU + kQuadV};
+    const DirectionCells cells{30, 48, lowestZ(reference, -normal, corners)};
+    const auto noCosine = [&](const SurfaceHit& hit) {
+        return double(lengthSquared(hit.position - reference)) / length(cross(kQuadU, kQuadV));
+    };
+    const auto pdfAt = [&](const Vec3& local) -> double {
+        SurfaceHit hit;
+        const Frame f(-normal);
+        return hitsLight(*s.scene, light, reference, normalize(f.toWorld(local)), &hit)
+                   ? noCosine(hit)
+                   : 0.0;
+    };
+    double norm = 0;
+    for (double e : expectedCounts(cells, pdfAt, 1.0))
+        norm += e;
+    const LightRun run = runLightChi2(*s.scene, light, reference, -normal, cells, 30,
+                                      [&](const SurfaceHit& hit) { return noCosine(hit) / norm; });
+    expectRejects(run.outcome, "quad samples vs pdf without cosine");
+}
+
+// --- Sample values: radiance, pdf at the sampled point ------------------------------------------
+
+struct LightCase {
+    std::string name, shape;
+    Vec3 reference;
+};
+
+// For 10⁴ samples: the ray towards ls.direction hits the light at ls.position, the radiance is
+// the emitted radiance, and ls.pdf equals light.pdf() there.
+TEST(LightSamples, RadianceAndPdfMatchTheLight) {
+    const std::vector<LightCase> cases = {
+        {"sphere, near", kSphere, kSphereCenter + normalize(Vec3(1, 2, -3)) * 0.9f},
+        {"sphere, far", kSphere, kSphereCenter + normalize(Vec3(1, 2, -3)) * 24.0f},
+        {"sphere, inside two-sided",
+         R"({"type": "sphere", "center": [0.5, -0.25, 1], "radius": 0.8,
+             "emission": {"radiance": [1, 2, 3], "two_sided": true}})",
+         kSphereCenter + Vec3(0.3f, -0.2f, 0.4f)},
+        {"quad", kQuad, Vec3(0.3f, 0.4f, 1.2f)},
+        {"disk", diskJson(false), kDiskCenter + Frame(kDiskNormal).toWorld(Vec3(0.5f, 0.2f, 0.7f))},
+        {"disk, two-sided from behind", diskJson(true),
+         kDiskCenter + Frame(kDiskNormal).toWorld(Vec3(1.1f, -0.4f, -0.5f))},
+    };
+    for (const LightCase& c : cases) {
+        const LoadedScene s = makeScene(c.shape);
+        const Light& light = *s.scene->lights()[0];
+        EXPECT_FALSE(light.isDelta());
+        int worst = 0;
+        double worstError = 0;
+        for (int i = 0; i < 10000; ++i) {
+            LightSample ls;
+            ASSERT_TRUE(light.sample(c.reference, uniform2(50, i), 0, &ls)) << c.name;
+            EXPECT_EQ(ls.radiance, Rgb(1, 2, 3)) << c.name;
+            EXPECT_FALSE(ls.isDelta);
+            EXPECT_NEAR(length(ls.direction), 1.0f, 1e-5f) << c.name;
+            const Vec3 toPoint = ls.position - c.reference;
+            EXPECT_NEAR(dot(normalize(toPoint), ls.direction), 1.0f, 1e-6f) << c.name;
+            SurfaceHit hit;
+            ASSERT_TRUE(hitsLight(*s.scene, light, c.reference, ls.direction, &hit))
+                << c.name << ": the sampled direction misses the light";
+            EXPECT_LT(length(hit.position - ls.position), 1e-4f * (1 + length(toPoint))) << c.name;
+            EXPECT_GT(std::abs(dot(ls.normal, hit.geometricNormal)), 0.9999f) << c.name;
+            const float pdf = light.pdf(c.reference, hit);
+            const double error = std::abs(pdf - ls.pdf) / ls.pdf;
+            if (error > worstError) {
+                worstError = error;
+                worst = i;
+            }
+        }
+        EXPECT_LT(worstError, 1e-3)
+            << c.name << ": sample " << worst << " has sample pdf ≠ light->pdf";
+    }
+    // The mesh roof, built without the loader.
+    const BuiltScene roof = makeRoofScene();
+    const Light& light = *roof.scene->lights()[0];
+    for (int i = 0; i < 10000; ++i) {
+        LightSample ls;
+        ASSERT_TRUE(light.sample(kRoofReference, uniform2(51, i), 0, &ls));
+        EXPECT_EQ(ls.radiance, Rgb(1, 2, 3));
+        SurfaceHit hit;
+        ASSERT_TRUE(hitsLight(*roof.scene, light, kRoofReference, ls.direction, &hit));
+        EXPECT_LT(length(hit.position - ls.position), 1e-4f);
+        EXPECT_NEAR(light.pdf(kRoofReference, hit), ls.pdf, 1e-3f * ls.pdf);
+    }
+    EXPECT_NEAR(light.power().g, 2 * kPi * roofArea() * 2, 1e-4f * light.power().g);
+}
+
+// Directions at the very edge of a narrow cone can miss the sphere by rounding; the sample must
+// still succeed, with a point that faces the reference and lies (nearly) along the direction.
+// (Regression: the tangent-point fallback's normal faced away half the time, and AreaLight
+// dropped the sample as back-facing: ~1.6e-5 of all samples at d = 3000 r.)
+TEST(LightSamples, GrazingConeEdgeDirectionsStillSample) {
+    const LoadedScene s = makeScene(kSphere);
+    const Light& light = *s.scene->lights()[0];
+    for (float ratio : {3.0f, 30.0f, 300.0f, 3000.0f}) {
+        const Vec3 reference = kSphereCenter + normalize(Vec3(1, 2, -3)) * (ratio * kSphereRadius);
+        int failed = 0;
+        for (int k = 1; k <= 64; ++k)
+            for (int j = 0; j < 200; ++j) {
+                LightSample ls;
+                const Vec2 u(1.0f - float(k) * 0x1p-24f, (j + 0.5f) / 200);
+                if (!light.sample(reference, u, 0, &ls)) {
+                    ++failed;
+                    continue;
+                }
+                EXPECT_GT(dot(ls.normal, reference - ls.position), 0.0f);
+                const Vec3 toPoint = normalize(ls.position - reference);
+                EXPECT_GT(dot(toPoint, ls.direction), 1.0f - 1e-6f);
+            }
+        EXPECT_EQ(failed, 0) << "d = " << ratio << " r: " << failed
+                             << " of 12800 cone-edge samples failed";
+    }
+}
+
+// --- Point lights, power ------------------------------------------------------------------------
+
+TEST(PointLight, GivesIntensityOverDistanceSquared) {
+    const LoadedScene s =
+        makeScene("", R"({"type": "point", "position": [1, 2, 3], "intensity": [4, 5, 6]})");
+    ASSERT_EQ(s.scene->lights().size(), 1u);
+    const Light& light = *s.scene->lights()[0];
+    EXPECT_TRUE(light.isDelta());
+    for (const Vec3 reference : {Vec3(0, 0, 0), Vec3(1, 2, 1), Vec3(-3, 5, 10)}) {
+        LightSample ls;
+        ASSERT_TRUE(light.sample(reference, Vec2(0.3f, 0.7f), 0, &ls));
+        const float d2 = lengthSquared(Vec3(1, 2, 3) - reference);
+        EXPECT_TRUE(ls.isDelta);
+        EXPECT_EQ(ls.pdf, 1.0f);
+        EXPECT_NEAR(ls.radiance.r, 4 / d2, 1e-6f * 4 / d2);
+        EXPECT_NEAR(ls.radiance.g, 5 / d2, 1e-6f * 5 / d2);
+        EXPECT_NEAR(ls.radiance.b, 6 / d2, 1e-6f * 6 / d2);
+        EXPECT_NEAR(length(ls.direction), 1.0f, 1e-6f);
+        EXPECT_NEAR(dot(ls.direction, normalize(Vec3(1, 2, 3) - reference)), 1.0f, 1e-6f);
+        EXPECT_EQ(ls.position, Vec3(1, 2, 3));
+        SurfaceHit anything;
+        anything.position = Vec3(1, 2, 3);
+        EXPECT_EQ(light.pdf(reference, anything), 0.0f);
+    }
+    EXPECT_NEAR(light.power().r, 4 * 4 * kPi, 1e-4f);
+    EXPECT_NEAR(light.power().b, 6 * 4 * kPi, 1e-4f);
+}
+
+TEST(AreaLight, PowerIsPiTimesAreaTimesRadiance) {
+    struct Case {
+        std::string shape;
+        float area;
+        bool twoSided;
+    };
+    const float quadArea = length(cross(kQuadU, kQuadV));
+    const std::vector<Case> cases = {
+        {kSphere, 4 * kPi * kSphereRadius * kSphereRadius, false},
+        {kQuad, quadArea, false},
+        {R"({"type": "quad", "corner": [-1, -0.5, 0], "edge_u": [2, 0, 0],
+             "edge_v": [0, 1.5, 0.3], "emission": {"radiance": [1, 2, 3], "two_sided": true}})",
+         quadArea, true},
+        {diskJson(false), kPi * kDiskRadius * kDiskRadius, false},
+        {diskJson(true), kPi * kDiskRadius * kDiskRadius, true},
+    };
+    for (const Case& c : cases) {
+        const LoadedScene s = makeScene(c.shape);
+        const Rgb power = s.scene->lights()[0]->power();
+        const float k = kPi * c.area * (c.twoSided ? 2.0f : 1.0f);
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(power[ch], k * float(ch + 1), 1e-5f * k * float(ch + 1)) << c.shape;
+    }
+}
+
+// --- Light selection ----------------------------------------------------------------------------
+
+const char* kFourLightShapes =
+    R"({"type": "sphere", "center": [0, 0, 0], "radius": 0.5, "emission": {"radiance": 1}},
+       {"type": "quad", "corner": [2, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
+        "emission": {"radiance": [4, 1, 1]}},
+       {"type": "disk", "center": [-2, 0, 0], "radius": 0.3,
+        "emission": {"radiance": 2, "two_sided": true}})";
+const char* kPointLight = R"({"type": "point", "position": [0, 3, 0], "intensity": 0.2})";
+
+Chi2Outcome selectionChi2(const LightSelector& selector, std::span<const Light* const> lights,
+                          const std::vector<double>& pmf, uint64_t seed) {
+    std::vector<double> counts(lights.size(), 0.0), expected(lights.size());
+    const Vec3 reference(0.1f, 0.2f, 0.3f);
+    for (int i = 0; i < kSamples; ++i) {
+        float p;
+        const Light* l = selector.select(uniform(seed, i, 0), reference, &p);
+        counts[l->index()] += 1;
+    }
+    for (size_t i = 0; i < pmf.size(); ++i)
+        expected[i] = pmf[i] * kSamples;
+    return chi2GoodnessOfFit(counts, expected);
+}
+
+TEST(LightSelection, PmfsAreUniformOrProportionalToPower) {
+    const LoadedScene s = makeScene(kFourLightShapes, kPointLight);
+    const auto lights = s.scene->lights();
+    ASSERT_EQ(lights.size(), 4u);
+    double totalPower = 0;
+    for (const Light* l : lights)
+        totalPower += l->power().luminance();
+    const auto uniformSelector = makeLightSelector(LightSelection::Uniform, lights);
+    const auto powerSelector = makeLightSelector(LightSelection::Power, lights);
+    const Vec3 reference(0.1f, 0.2f, 0.3f);
+    double sumUniform = 0, sumPower = 0;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = *lights[i];
+        EXPECT_EQ(l.index(), int(i));
+        EXPECT_FLOAT_EQ(uniformSelector->pmf(l, reference), 0.25f);
+        const double expected = l.power().luminance() / totalPower;
+        EXPECT_NEAR(powerSelector->pmf(l, reference), expected, 1e-6 * expected) << i;
+        // The scene's own selector uses the document's "power" default.
+        EXPECT_EQ(s.scene->lightSelector().pmf(l, reference), powerSelector->pmf(l, reference));
+        sumUniform += uniformSelector->pmf(l, reference);
+        sumPower += powerSelector->pmf(l, reference);
+    }
+    EXPECT_NEAR(sumUniform, 1.0, 1e-6);
+    EXPECT_NEAR(sumPower, 1.0, 1e-6);
+    // select() reports the pmf of the light it picks.
+    for (int i = 0; i < 1000; ++i) {
+        float p;
+        const Light* l = powerSelector->select((i + 0.5f) / 1000, reference, &p);
+        ASSERT_NE(l, nullptr);
+        EXPECT_EQ(p, powerSelector->pmf(*l, reference));
+    }
+    const LoadedScene u = makeScene(kFourLightShapes, kPointLight, "uniform");
+    for (const Light* l : u.scene->lights())
+        EXPECT_FLOAT_EQ(u.scene->lightSelector().pmf(*l, reference), 0.25f);
+}
+
+TEST(LightSelection, SelectedLightsFollowPmf) {
+    const LoadedScene s = makeScene(kFourLightShapes, kPointLight);
+    const auto lights = s.scene->lights();
+    double totalPower = 0;
+    for (const Light* l : lights)
+        totalPower += l->power().luminance();
+    std::vector<double> uniformPmf(lights.size(), 0.25), powerPmf;
+    for (const Light* l : lights)
+        powerPmf.push_back(l->power().luminance() / totalPower);
+    expectFits(
+        selectionChi2(*makeLightSelector(LightSelection::Uniform, lights), lights, uniformPmf, 60),
+        "uniform light selection");
+    expectFits(
+        selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights, powerPmf, 61),
+        "light selection by power");
+}
+
+TEST(LightChi2NegativeControl, PowerSelectionIsNotUniform) {
+    const LoadedScene s = makeScene(kFourLightShapes, kPointLight);
+    const auto lights = s.scene->lights();
+    expectRejects(selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights,
+                                std::vector<double>(lights.size(), 0.25), 61),
+                  "power selection vs uniform pmf");
+}
+
+// --- Test machinery
+// -------------------------------------------------------------------------------
+
+// expectedCounts() relies on DirectionHistogram's cell layout; check it with one direction at
+// the centre of every cell.
+TEST(TestMachinery, DirectionCellLayoutMatchesDirectionHistogram) {
+    const DirectionCells g{7, 9, -0.4};
+    for (int iz = 0; iz < g.zCells; ++iz)
+        for (int ip = 0; ip < g.phiCells; ++ip) {
+            DirectionHistogram h(g.zCells, g.phiCells, g.zMin);
+            h.add(g.direction(g.zMin + (iz + 0.5) * g.dz(), (ip + 0.5) * g.dphi()));
+            ASSERT_EQ(h.counts()[size_t(iz) * g.phiCells + ip], 1.0) << iz << ", " << ip;
+        }
+    // And the refined integration agrees with the histogram's own on a smooth density.
+    const auto pdf = [](const Vec3& w) { return (1 + 0.5 * w.z + 0.2 * w.x) / (4 * M_PI); };
+    DirectionHistogram h(g.zCells, g.phiCells, g.zMin);
+    const std::vector<double> theirs = h.expected(pdf, 1000.0);
+    const std::vector<double> ours = expectedCounts(g, pdf, 1000.0);
+    ASSERT_EQ(theirs.size(), ours.size());
+    for (size_t i = 0; i < ours.size(); ++i)
+        EXPECT_NEAR(ours[i], theirs[i], 1e-9) << i;
+}
+
+}  // namespace
+}  // namespace rr::test

@@ -1,0 +1,297 @@
+// χ² goodness-of-fit tests of every warp in sampling/warps.h against its own density, plus
+// domain and normalisation checks, and negative controls showing that each χ² set-up rejects
+// a wrong density.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sampling/hash.h"
+#include "sampling/warps.h"
+#include "support/chi2.h"
+#include "support/histograms.h"
+
+namespace rr::test {
+namespace {
+
+// Every χ² run in this file (positive tests and negative controls), for the Šidák correction:
+// disk, cosine hemisphere, uniform hemisphere, sphere, 4 cones, triangle (9 positive) and
+// 6 negative controls.
+constexpr int kRuns = 15;
+const double kAlpha = sidakAlpha(0.01, kRuns);
+constexpr int kSamples = 1000000;
+
+// The renderer's counter-based generator: coordinate `dim` of sample `i` of stream `seed`.
+float uniform(uint64_t seed, uint64_t i, uint64_t dim) {
+    return toUnitFloat(pcgOutput(hashKeys(seed, i, dim)));
+}
+Vec2 uniform2(uint64_t seed, uint64_t i) {
+    return {uniform(seed, i, 0), uniform(seed, i, 1)};
+}
+
+// u values at and next to the edges of [0,1)², where warps divide by zero or round to 1.
+std::vector<Vec2> edgeCases() {
+    const float values[] = {0.0f, 0x1p-24f, 0.25f, 0.5f, 0.75f, 1.0f - 0x1p-24f};
+    std::vector<Vec2> out;
+    for (float a : values)
+        for (float b : values)
+            out.push_back({a, b});
+    return out;
+}
+
+// ∫ pdf dω over the sphere with the midpoint rule in (z, φ) (dω = dz dφ).
+double integrateOverSphere(const std::function<double(const Vec3&)>& pdf, int zSteps = 2000,
+                           int phiSteps = 64, double zMin = -1.0) {
+    double sum = 0;
+    const double dz = (1.0 - zMin) / zSteps, dphi = 2 * M_PI / phiSteps;
+    for (int i = 0; i < zSteps; ++i)
+        for (int j = 0; j < phiSteps; ++j) {
+            const double z = zMin + (i + 0.5) * dz, phi = (j + 0.5) * dphi;
+            const double r = std::sqrt(std::max(0.0, 1 - z * z));
+            sum += pdf(Vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z)));
+        }
+    return sum * dz * dphi;
+}
+
+Chi2Outcome directionChi2(const std::function<Vec3(Vec2)>& warp, uint64_t seed,
+                          const std::function<double(const Vec3&)>& pdf, int zCells, int phiCells,
+                          double zMin = -1.0) {
+    DirectionHistogram h(zCells, phiCells, zMin);
+    for (int i = 0; i < kSamples; ++i)
+        h.add(warp(uniform2(seed, i)));
+    return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples));
+}
+
+// Plane histograms use a fine midpoint rule (64² points per cell): their support boundaries
+// (circle, diagonal) cross cells, and a cell that holds a sliver of the support must not get
+// an expected count of exactly zero.
+Chi2Outcome planeChi2(const std::function<Vec2(Vec2)>& warp, uint64_t seed,
+                      const std::function<double(const Vec2&)>& pdf, int xCells, int yCells,
+                      double x0, double x1, double y0, double y1) {
+    PlaneHistogram h(xCells, yCells, x0, x1, y0, y1);
+    for (int i = 0; i < kSamples; ++i)
+        h.add(warp(uniform2(seed, i)));
+    return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples, 64));
+}
+
+std::string testName() {
+    return ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+// Logs every outcome (so a passing run still shows its p-values) and checks it.
+void expectFits(const Chi2Outcome& r, const std::string& what = testName()) {
+    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
+}
+void expectRejects(const Chi2Outcome& r, const std::string& what = testName()) {
+    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
+}
+
+double diskPdf(const Vec2& p) {
+    return p.x * p.x + p.y * p.y < 1 ? 1.0 / M_PI : 0.0;
+}
+Vec2 diskWarp(Vec2 u) {
+    return squareToUniformDisk(u);
+}
+
+// --- Domains and normalisation ---------------------------------------------------------------
+
+TEST(Warps, SamplesLieInTheirDomains) {
+    std::vector<Vec2> us = edgeCases();
+    for (int i = 0; i < 20000; ++i)
+        us.push_back(uniform2(11, i));
+    for (const Vec2& u : us) {
+        const std::string at = "u = (" + std::to_string(u.x) + ", " + std::to_string(u.y) + ")";
+        const Vec2 d = squareToUniformDisk(u);
+        EXPECT_LE(d.x * d.x + d.y * d.y, 1.0f + 1e-6f) << at;
+
+        const Vec3 c = squareToCosineHemisphere(u);
+        EXPECT_GE(c.z, 0.0f) << at;
+        EXPECT_NEAR(length(c), 1.0f, 1e-5f) << at;
+
+        const Vec3 h = squareToUniformHemisphere(u);
+        EXPECT_GE(h.z, 0.0f) << at;
+        EXPECT_NEAR(length(h), 1.0f, 1e-5f) << at;
+
+        const Vec3 s = squareToUniformSphere(u);
+        EXPECT_NEAR(length(s), 1.0f, 1e-5f) << at;
+
+        for (float c1 : {1.0f, 0.3f, 1e-3f, 1e-7f}) {
+            const Vec3 w = squareToUniformCone(u, c1);
+            EXPECT_NEAR(length(w), 1.0f, 1e-5f) << at;
+            // 1 − cos θ ≤ 1 − cos θmax, up to the rounding of cos θ near 1.
+            EXPECT_LE(1.0f - w.z, c1 * (1 + 1e-5f) + 1e-7f) << at << ", cone " << c1;
+        }
+
+        const Vec2 b = squareToUniformTriangle(u);
+        EXPECT_GE(b.x, 0.0f) << at;
+        EXPECT_GE(b.y, 0.0f) << at;
+        EXPECT_LE(b.x + b.y, 1.0f) << at;
+    }
+}
+
+TEST(Warps, DensitiesIntegrateToOne) {
+    EXPECT_NEAR(uniformDiskPdf() * M_PI, 1.0, 1e-6);
+    EXPECT_NEAR(integrateOverSphere([](const Vec3& w) { return cosineHemispherePdf(w); }), 1.0,
+                1e-4);
+    EXPECT_NEAR(integrateOverSphere([](const Vec3& w) { return uniformHemispherePdf(w); }), 1.0,
+                1e-4);
+    EXPECT_NEAR(integrateOverSphere([](const Vec3&) { return uniformSpherePdf(); }), 1.0, 1e-5);
+    for (float c : {1.0f, 0.3f, 1e-3f}) {
+        // Over the band z ∈ [1 − c, 1], which is exactly the cone.
+        const double mass = integrateOverSphere([c](const Vec3&) { return uniformConePdf(c); }, 100,
+                                                8, 1.0 - double(c));
+        EXPECT_NEAR(mass, 1.0, 1e-5) << "cone " << c;
+    }
+}
+
+TEST(Warps, ConeOneMinusCosIsAccurateForSmallSpheres) {
+    for (double d : {1.01, 1.5, 3.0, 30.0, 1e3, 1e5}) {
+        const double sin2 = 1.0 / (d * d);
+        const double exact = sin2 / (1.0 + std::sqrt(1.0 - sin2));  // = 1 − √(1 − sin²)
+        EXPECT_NEAR(coneOneMinusCos(float(sin2)), exact, 1e-6 * exact) << "d/r = " << d;
+    }
+    // The full cone of a tangent reference point is a hemisphere.
+    EXPECT_FLOAT_EQ(coneOneMinusCos(1.0f), 1.0f);
+}
+
+TEST(Warps, TriangleMapSendsCornersAndDiagonalWhereExpected) {
+    // Heitz 2019: the square's corners go to the vertices (and (1,1) to the middle of the
+    // hypotenuse), its diagonal u.x = u.y to the median b0 = b1.
+    const Vec2 origin = squareToUniformTriangle({0, 0});
+    EXPECT_EQ(origin.x, 0.0f);
+    EXPECT_EQ(origin.y, 0.0f);
+    const Vec2 right = squareToUniformTriangle({1.0f - 0x1p-24f, 0});
+    EXPECT_NEAR(right.x, 1.0f, 1e-6f);
+    EXPECT_EQ(right.y, 0.0f);
+    const Vec2 top = squareToUniformTriangle({0, 1.0f - 0x1p-24f});
+    EXPECT_EQ(top.x, 0.0f);
+    EXPECT_NEAR(top.y, 1.0f, 1e-6f);
+    for (float t : {0.1f, 0.4f, 0.9f}) {
+        const Vec2 b = squareToUniformTriangle({t, t});
+        EXPECT_FLOAT_EQ(b.x, 0.5f * t);
+        EXPECT_FLOAT_EQ(b.y, 0.5f * t);
+    }
+}
+
+// --- χ² of each warp against its own density --------------------------------------------------
+
+TEST(WarpsChi2, UniformDisk) {
+    const Chi2Outcome r = planeChi2(diskWarp, 1, diskPdf, 50, 50, -1, 1, -1, 1);
+    expectFits(r);
+}
+
+// The hemisphere boundary z = 0 lies in the middle of the (odd) 41 z-cells over [-1, 1].
+TEST(WarpsChi2, CosineHemisphere) {
+    const Chi2Outcome r = directionChi2(
+        squareToCosineHemisphere, 2, [](const Vec3& w) { return cosineHemispherePdf(w); }, 41, 60);
+    expectFits(r);
+}
+
+TEST(WarpsChi2, UniformHemisphere) {
+    const Chi2Outcome r = directionChi2(
+        squareToUniformHemisphere, 3, [](const Vec3& w) { return uniformHemispherePdf(w); }, 41,
+        60);
+    expectFits(r);
+}
+
+TEST(WarpsChi2, UniformSphere) {
+    const Chi2Outcome r = directionChi2(
+        squareToUniformSphere, 4, [](const Vec3&) { return uniformSpherePdf(); }, 40, 50);
+    expectFits(r);
+}
+
+// The band [zMin, 1] is chosen so that the cone spans 20.5 z-cells: its edge falls in the middle
+// of a cell however narrow the cone, and 3.5 empty cells below it catch any leak.
+Chi2Outcome coneChi2(float oneMinusCosMax, uint64_t seed, float pdfCone) {
+    constexpr int kZCells = 24;
+    const double dz = double(oneMinusCosMax) / 20.5;
+    const double zMin = 1.0 - kZCells * dz;
+    return directionChi2(
+        [=](Vec2 u) { return squareToUniformCone(u, oneMinusCosMax); }, seed,
+        [=](const Vec3& w) { return 1.0 - double(w.z) <= pdfCone ? uniformConePdf(pdfCone) : 0.0; },
+        kZCells, 48, zMin);
+}
+
+class ConeChi2 : public ::testing::TestWithParam<float> {};
+
+TEST_P(ConeChi2, UniformCone) {
+    // A different stream per cone: the cone warp is the same map up to scale, so a shared seed
+    // would repeat the same histogram (and the Šidák correction assumes independent runs).
+    const Chi2Outcome r =
+        coneChi2(GetParam(), 100 + std::bit_cast<uint32_t>(GetParam()), GetParam());
+    expectFits(r, "cone with 1 - cos(theta_max) = " + std::to_string(GetParam()));
+}
+
+// Hemisphere, wide, narrow and the cone of a sphere 10 radii away (via coneOneMinusCos).
+INSTANTIATE_TEST_SUITE_P(Cones, ConeChi2,
+                         ::testing::Values(1.0f, 0.3f, 1e-3f, coneOneMinusCos(0.01f)));
+
+// The diagonal b0 + b1 = 1 crosses the 40 × 37 grid without passing through (or close to) any
+// interior cell corner.
+double trianglePdf(const Vec2& b) {
+    return b.x >= 0 && b.y >= 0 && b.x + b.y <= 1 ? 2.0 : 0.0;
+}
+
+TEST(WarpsChi2, UniformTriangle) {
+    const Chi2Outcome r = planeChi2(squareToUniformTriangle, 6, trianglePdf, 40, 37, 0, 1, 0, 1);
+    expectFits(r);
+}
+
+// --- Negative controls: the same set-ups must reject a wrong density --------------------------
+
+TEST(WarpsChi2NegativeControl, CosineSamplesAreNotUniformOnTheHemisphere) {
+    const Chi2Outcome r = directionChi2(
+        squareToCosineHemisphere, 2, [](const Vec3& w) { return uniformHemispherePdf(w); }, 41, 60);
+    expectRejects(r);
+}
+
+// A 10% linear tilt of the sphere density (λ ≈ 3000 against ~2000 degrees of freedom).
+TEST(WarpsChi2NegativeControl, SphereSamplesRejectATiltedDensity) {
+    const Chi2Outcome r = directionChi2(
+        squareToUniformSphere, 4,
+        [](const Vec3& w) { return (1 + 0.1 * w.z) * uniformSpherePdf(); }, 40, 50);
+    expectRejects(r);
+    EXPECT_TRUE(r.failure.empty()) << "the control should fail on counts, not on support";
+}
+
+// A disk density with the same support but a mild radial slope, p = (1 + 0.1 (1 − 2 r²)) / π,
+// which integrates to one (λ ≈ 3300 against ~2000 degrees of freedom).
+TEST(WarpsChi2NegativeControl, DiskSamplesRejectARadialSlope) {
+    const Chi2Outcome r = planeChi2(
+        diskWarp, 1,
+        [](const Vec2& p) {
+            const double r2 = double(p.x) * p.x + double(p.y) * p.y;
+            return r2 < 1 ? (1 + 0.1 * (1 - 2 * r2)) / M_PI : 0.0;
+        },
+        50, 50, -1, 1, -1, 1);
+    expectRejects(r);
+    EXPECT_TRUE(r.failure.empty()) << "the control should fail on counts, not on support";
+}
+
+// A narrow cone checked against a cone 2% wider: the histogram resolves the edge.
+TEST(WarpsChi2NegativeControl, NarrowConeRejectsASlightlyWiderCone) {
+    const Chi2Outcome r = coneChi2(1e-3f, 5, 1.02e-3f);
+    expectRejects(r);
+}
+
+// A narrow cone checked against a cone 2% narrower: samples where the density is zero.
+TEST(WarpsChi2NegativeControl, NarrowConeRejectsASlightlyNarrowerCone) {
+    const Chi2Outcome r = coneChi2(1e-3f, 5, 0.98e-3f);
+    expectRejects(r);
+}
+
+// Uniform triangle samples against the linear density 6·b0 on the triangle.
+TEST(WarpsChi2NegativeControl, TriangleSamplesRejectALinearDensity) {
+    const Chi2Outcome r = planeChi2(
+        squareToUniformTriangle, 6,
+        [](const Vec2& b) { return trianglePdf(b) > 0 ? 6.0 * b.x : 0.0; }, 40, 37, 0, 1, 0, 1);
+    expectRejects(r);
+}
+
+}  // namespace
+}  // namespace rr::test
