@@ -62,72 +62,13 @@ bool hitsLight(const Scene& scene, const Light& light, const Vec3& origin, const
     return hit->shape != nullptr && hit->shape->areaLight() == &light;
 }
 
-// --- Expected counts on a DirectionHistogram's cells ------------------------------------------
-
-// The cells of DirectionHistogram(zCells, phiCells, zMin): cell (iz, ip) covers
-// z ∈ zMin + [iz, iz+1)·dz, φ ∈ [ip, ip+1)·dφ and is counts()[iz·phiCells + ip]; the last entry
-// is the outside cell. (Checked against DirectionHistogram::add by a test below.)
+// The band and resolution of a DirectionHistogram (the χ² tooling integrates the expected
+// counts, refining cells on the outline of the light).
 struct DirectionCells {
     int zCells, phiCells;
     double zMin;
-    double dz() const { return (1.0 - zMin) / zCells; }
-    double dphi() const { return 2 * M_PI / phiCells; }
-    Vec3 direction(double z, double phi) const {
-        const double r = std::sqrt(std::max(0.0, 1 - z * z));
-        return Vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
-    }
+    DirectionHistogram histogram() const { return DirectionHistogram(zCells, phiCells, zMin); }
 };
-
-// Midpoint rule on an s × s sub-grid of one cell; also tells whether the density was zero at
-// some sub-points and non-zero at others.
-double integrateCell(const DirectionCells& g, int iz, int ip,
-                     const std::function<double(const Vec3&)>& pdf, int s, bool* mixed) {
-    double mass = 0;
-    int zeros = 0;
-    for (int a = 0; a < s; ++a)
-        for (int b = 0; b < s; ++b) {
-            const double z = g.zMin + (iz + (a + 0.5) / s) * g.dz();
-            const double phi = (ip + (b + 0.5) / s) * g.dphi();
-            const double p = pdf(g.direction(z, phi));
-            mass += p;
-            zeros += p == 0;
-        }
-    if (mixed) *mixed = zeros > 0 && zeros < s * s;
-    return mass * (g.dz() / s) * (g.dphi() / s);
-}
-
-// Expected counts with the histogram's 16² midpoint rule, refined to 96² sub-points on cells
-// at the edge of the support (mixed cells and the empty cells next to non-empty ones): the
-// outline of a quad or disk crosses cells, and a cell holding a sliver of the support must not
-// be given an expected count of zero.
-std::vector<double> expectedCounts(const DirectionCells& g,
-                                   const std::function<double(const Vec3&)>& pdf, double samples) {
-    const int n = g.zCells * g.phiCells;
-    std::vector<double> mass(n);
-    std::vector<char> mixed(n);
-    for (int iz = 0; iz < g.zCells; ++iz)
-        for (int ip = 0; ip < g.phiCells; ++ip) {
-            bool m;
-            mass[iz * g.phiCells + ip] = integrateCell(g, iz, ip, pdf, 16, &m);
-            mixed[iz * g.phiCells + ip] = m;
-        }
-    for (int iz = 0; iz < g.zCells; ++iz)
-        for (int ip = 0; ip < g.phiCells; ++ip) {
-            const int i = iz * g.phiCells + ip;
-            bool refine = mixed[i];
-            for (int dz = -1; dz <= 1 && !refine; ++dz)
-                for (int dp = -1; dp <= 1 && !refine; ++dp) {
-                    const int jz = iz + dz, jp = (ip + dp + g.phiCells) % g.phiCells;
-                    if (jz < 0 || jz >= g.zCells) continue;
-                    refine = (mass[i] == 0) != (mass[jz * g.phiCells + jp] == 0);
-                }
-            if (refine) mass[i] = integrateCell(g, iz, ip, pdf, 96, nullptr);
-        }
-    std::vector<double> out(size_t(n) + 1, 0.0);
-    for (int i = 0; i < n; ++i)
-        out[i] = mass[i] * samples;
-    return out;
-}
 
 // --- The light-sampling χ² run -----------------------------------------------------------------
 
@@ -145,7 +86,7 @@ LightRun runLightChi2(const Scene& scene, const Light& light, const Vec3& refere
                       const std::function<double(const SurfaceHit&)>& pdfOf = nullptr) {
     const Frame frame(normalize(axis));
     LightRun run;
-    DirectionHistogram h(cells.zCells, cells.phiCells, cells.zMin);
+    DirectionHistogram h = cells.histogram();
     for (int i = 0; i < kSamples; ++i) {
         LightSample ls;
         if (!light.sample(reference, uniform2(seed, i), 0.0f, &ls)) {
@@ -160,7 +101,7 @@ LightRun runLightChi2(const Scene& scene, const Light& light, const Vec3& refere
         return pdfOf ? pdfOf(hit) : light.pdf(reference, hit);
     };
     const double accepted = kSamples - run.failedSamples;
-    const std::vector<double> expected = expectedCounts(cells, pdf, accepted);
+    const std::vector<double> expected = h.expected(pdf, accepted);
     for (double e : expected)
         run.expectedMass += e / accepted;
     run.outcome = chi2GoodnessOfFit(h.counts(), expected);
@@ -394,7 +335,7 @@ TEST(LightChi2NegativeControl, QuadSamplesRejectPdfWithoutCosine) {
                    : 0.0;
     };
     double norm = 0;
-    for (double e : expectedCounts(cells, pdfAt, 1.0))
+    for (double e : cells.histogram().expected(pdfAt, 1.0))
         norm += e;
     const LightRun run = runLightChi2(*s.scene, light, reference, -normal, cells, 30,
                                       [&](const SurfaceHit& hit) { return noCosine(hit) / norm; });
@@ -630,29 +571,6 @@ TEST(LightChi2NegativeControl, PowerSelectionIsNotUniform) {
     expectRejects(selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights,
                                 std::vector<double>(lights.size(), 0.25), 61),
                   "power selection vs uniform pmf");
-}
-
-// --- Test machinery
-// -------------------------------------------------------------------------------
-
-// expectedCounts() relies on DirectionHistogram's cell layout; check it with one direction at
-// the centre of every cell.
-TEST(TestMachinery, DirectionCellLayoutMatchesDirectionHistogram) {
-    const DirectionCells g{7, 9, -0.4};
-    for (int iz = 0; iz < g.zCells; ++iz)
-        for (int ip = 0; ip < g.phiCells; ++ip) {
-            DirectionHistogram h(g.zCells, g.phiCells, g.zMin);
-            h.add(g.direction(g.zMin + (iz + 0.5) * g.dz(), (ip + 0.5) * g.dphi()));
-            ASSERT_EQ(h.counts()[size_t(iz) * g.phiCells + ip], 1.0) << iz << ", " << ip;
-        }
-    // And the refined integration agrees with the histogram's own on a smooth density.
-    const auto pdf = [](const Vec3& w) { return (1 + 0.5 * w.z + 0.2 * w.x) / (4 * M_PI); };
-    DirectionHistogram h(g.zCells, g.phiCells, g.zMin);
-    const std::vector<double> theirs = h.expected(pdf, 1000.0);
-    const std::vector<double> ours = expectedCounts(g, pdf, 1000.0);
-    ASSERT_EQ(theirs.size(), ours.size());
-    for (size_t i = 0; i < ours.size(); ++i)
-        EXPECT_NEAR(ours[i], theirs[i], 1e-9) << i;
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ class UnitHistogram {
 };
 
 Chi2Outcome planeUniformChi2(const PlaneHistogram& h, double samples) {
-    return chi2GoodnessOfFit(h.counts(), h.expected([](const Vec2&) { return 1.0; }, samples, 1));
+    return chi2GoodnessOfFit(h.counts(), h.expected([](const Vec2&) { return 1.0; }, samples));
 }
 
 // Columns of the 2-D strata grid the sampler uses for n strata: the largest divisor of n not

@@ -75,7 +75,7 @@ Chi2Outcome planeChi2(const std::function<Vec2(Vec2)>& warp, uint64_t seed,
     PlaneHistogram h(xCells, yCells, x0, x1, y0, y1);
     for (int i = 0; i < kSamples; ++i)
         h.add(warp(uniform2(seed, i)));
-    return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples, 64));
+    return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples));
 }
 
 std::string testName() {

@@ -5,6 +5,59 @@
 
 namespace rr::test {
 
+namespace {
+
+constexpr int kSubdivisions = 16;
+constexpr int kEdgeSubdivisions = 96;
+
+// Mean of density(row, col, fraction, fraction) over an s × s midpoint grid of one cell;
+// *mixed tells whether it was zero at some sub-points and not at others.
+double cellMean(const std::function<double(int, int, double, double)>& density, int row, int col,
+                int s, bool* mixed) {
+    double sum = 0;
+    int zeros = 0;
+    for (int a = 0; a < s; ++a)
+        for (int b = 0; b < s; ++b) {
+            const double d = density(row, col, (a + 0.5) / s, (b + 0.5) / s);
+            sum += d;
+            zeros += d == 0;
+        }
+    if (mixed) *mixed = zeros > 0 && zeros < s * s;
+    return sum / (s * s);
+}
+
+// Expected counts of a rows × cols grid (row-major) plus an outside cell that expects nothing;
+// `scale` turns a cell's mean density into its count. Edge cells are integrated finely.
+std::vector<double> integrateCells(int rows, int cols, bool wrapColumns,
+                                   const std::function<double(int, int, double, double)>& density,
+                                   double scale) {
+    std::vector<double> mean(size_t(rows) * cols);
+    std::vector<char> mixed(mean.size());
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            bool m;
+            mean[size_t(r) * cols + c] = cellMean(density, r, c, kSubdivisions, &m);
+            mixed[size_t(r) * cols + c] = m;
+        }
+    std::vector<double> out(mean.size() + 1, 0.0);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const size_t i = size_t(r) * cols + c;
+            bool edge = mixed[i];
+            for (int dr = -1; dr <= 1 && !edge; ++dr)
+                for (int dc = -1; dc <= 1 && !edge; ++dc) {
+                    int rr = r + dr, cc = c + dc;
+                    if (wrapColumns) cc = (cc + cols) % cols;
+                    if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
+                    edge = (mean[i] == 0) != (mean[size_t(rr) * cols + cc] == 0);
+                }
+            out[i] = scale * (edge ? cellMean(density, r, c, kEdgeSubdivisions, nullptr) : mean[i]);
+        }
+    return out;
+}
+
+}  // namespace
+
 DirectionHistogram::DirectionHistogram(int zCells, int phiCells, double zMin)
     : zCells_(zCells), phiCells_(phiCells), zMin_(zMin), counts_(size_t(zCells) * phiCells + 1) {}
 
@@ -22,24 +75,20 @@ void DirectionHistogram::add(const Vec3& w) {
     counts_[size_t(iz) * phiCells_ + ip] += 1;
 }
 
+Vec3 DirectionHistogram::direction(double zCell, double phiCell) const {
+    const double z = zMin_ + zCell * (1.0 - zMin_) / zCells_;
+    const double phi = phiCell * 2 * M_PI / phiCells_;
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    return Vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+}
+
 std::vector<double> DirectionHistogram::expected(const std::function<double(const Vec3&)>& pdf,
-                                                 double samples, int subdivisions) const {
-    std::vector<double> out(counts_.size(), 0.0);
-    const double dz = (1.0 - zMin_) / zCells_, dphi = 2 * M_PI / phiCells_;
-    const double subArea = (dz / subdivisions) * (dphi / subdivisions);
-    for (int iz = 0; iz < zCells_; ++iz)
-        for (int ip = 0; ip < phiCells_; ++ip) {
-            double mass = 0;
-            for (int a = 0; a < subdivisions; ++a)
-                for (int b = 0; b < subdivisions; ++b) {
-                    const double z = zMin_ + (iz + (a + 0.5) / subdivisions) * dz;
-                    const double phi = (ip + (b + 0.5) / subdivisions) * dphi;
-                    const double r = std::sqrt(std::max(0.0, 1 - z * z));
-                    mass += pdf(Vec3(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z)));
-                }
-            out[size_t(iz) * phiCells_ + ip] = mass * subArea * samples;
-        }
-    return out;  // the outside cell expects nothing: the domain must contain the support
+                                                 double samples) const {
+    const double cellArea = (1.0 - zMin_) / zCells_ * (2 * M_PI / phiCells_);  // dω = dz dφ
+    return integrateCells(
+        zCells_, phiCells_, /*wrapColumns=*/true,
+        [&](int iz, int ip, double fz, double fp) { return pdf(direction(iz + fz, ip + fp)); },
+        cellArea * samples);
 }
 
 PlaneHistogram::PlaneHistogram(int xCells, int yCells, double x0, double x1, double y0, double y1)
@@ -63,20 +112,14 @@ void PlaneHistogram::add(const Vec2& p) {
 }
 
 std::vector<double> PlaneHistogram::expected(const std::function<double(const Vec2&)>& pdf,
-                                             double samples, int subdivisions) const {
-    std::vector<double> out(counts_.size(), 0.0);
+                                             double samples) const {
     const double dx = (x1_ - x0_) / xCells_, dy = (y1_ - y0_) / yCells_;
-    const double subArea = (dx / subdivisions) * (dy / subdivisions);
-    for (int iy = 0; iy < yCells_; ++iy)
-        for (int ix = 0; ix < xCells_; ++ix) {
-            double mass = 0;
-            for (int a = 0; a < subdivisions; ++a)
-                for (int b = 0; b < subdivisions; ++b)
-                    mass += pdf(Vec2(float(x0_ + (ix + (a + 0.5) / subdivisions) * dx),
-                                     float(y0_ + (iy + (b + 0.5) / subdivisions) * dy)));
-            out[size_t(iy) * xCells_ + ix] = mass * subArea * samples;
-        }
-    return out;  // the outside cell expects nothing: the domain covers the whole support
+    return integrateCells(
+        yCells_, xCells_, /*wrapColumns=*/false,
+        [&](int iy, int ix, double fy, double fx) {
+            return pdf(Vec2(float(x0_ + (ix + fx) * dx), float(y0_ + (iy + fy) * dy)));
+        },
+        dx * dy * samples);
 }
 
 }  // namespace rr::test
