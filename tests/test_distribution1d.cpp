@@ -11,6 +11,7 @@
 #include "sampling/distribution1d.h"
 #include "sampling/hash.h"
 #include "support/chi2.h"
+#include "support/test_random.h"
 
 namespace rr::test {
 namespace {
@@ -18,21 +19,9 @@ namespace {
 // Every χ² run in this file: indices (2 distributions), pooled remapped u, joint (index,
 // remapped u), and 2 negative controls.
 constexpr int kRuns = 6;
-const double kAlpha = sidakAlpha(0.01, kRuns);
+const Chi2Family kChi2(kRuns);
+const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
-
-float uniform(uint64_t seed, uint64_t i) {
-    return toUnitFloat(pcgOutput(hashKeys(seed, i)));
-}
-
-void expectFits(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
-void expectRejects(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
 
 // 50 weights 1..7 with zeros at every tenth entry from 3 on, and at both ends.
 std::vector<float> mixedWeights() {
@@ -203,12 +192,12 @@ TEST(Distribution1D, SingleEntryReturnsUUnchanged) {
 
 TEST(Distribution1DChi2, SampledIndicesFollowThePmf) {
     const std::vector<float> w = mixedWeights();
-    expectFits(indexChi2(Distribution1D(w), normalized(w), 1), "indices, 50 mixed weights");
+    kChi2.expectFits(indexChi2(Distribution1D(w), normalized(w), 1), "indices, 50 mixed weights");
 }
 
 TEST(Distribution1DChi2, SampledIndicesFollowAWidePmf) {
     const std::vector<float> w = wideWeights();
-    expectFits(indexChi2(Distribution1D(w), normalized(w), 2), "indices, 1000 wide weights");
+    kChi2.expectFits(indexChi2(Distribution1D(w), normalized(w), 2), "indices, 1000 wide weights");
 }
 
 TEST(Distribution1DChi2, RemappedUIsUniform) {
@@ -220,13 +209,13 @@ TEST(Distribution1DChi2, RemappedUIsUniform) {
         ASSERT_TRUE(r >= 0.0f && r < 1.0f) << r;
         counts[std::min(int(r * 1000), 999)] += 1;
     }
-    expectFits(chi2GoodnessOfFit(counts, std::vector<double>(1000, kSamples / 1000.0)),
-               "pooled remapped u");
+    kChi2.expectFits(chi2GoodnessOfFit(counts, std::vector<double>(1000, kSamples / 1000.0)),
+                     "pooled remapped u");
 }
 
 TEST(Distribution1DChi2, RemappedUIsUniformGivenTheIndex) {
     const std::vector<float> w = mixedWeights();
-    expectFits(jointChi2(Distribution1D(w), normalized(w), 4, false), "(index, remapped u)");
+    kChi2.expectFits(jointChi2(Distribution1D(w), normalized(w), 4, false), "(index, remapped u)");
 }
 
 // Negative controls: a pmf 20% off on one entry, and the raw u in place of the remapped one.
@@ -234,12 +223,13 @@ TEST(Distribution1DChi2NegativeControl, RejectsAPerturbedPmf) {
     const std::vector<float> w = mixedWeights();
     std::vector<float> wrong = w;
     wrong[1] *= 1.2f;
-    expectRejects(indexChi2(Distribution1D(w), normalized(wrong), 1), "entry 1 off by 20%");
+    kChi2.expectRejects(indexChi2(Distribution1D(w), normalized(wrong), 1), "entry 1 off by 20%");
 }
 
 TEST(Distribution1DChi2NegativeControl, RejectsRawUAsRemappedU) {
     const std::vector<float> w = mixedWeights();
-    expectRejects(jointChi2(Distribution1D(w), normalized(w), 4, true), "raw u given the index");
+    kChi2.expectRejects(jointChi2(Distribution1D(w), normalized(w), 4, true),
+                        "raw u given the index");
 }
 
 }  // namespace

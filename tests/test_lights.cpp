@@ -19,6 +19,7 @@
 #include "support/chi2.h"
 #include "support/histograms.h"
 #include "support/scene_testing.h"
+#include "support/test_random.h"
 
 namespace rr::test {
 namespace {
@@ -27,24 +28,9 @@ namespace {
 // two-sided disk from behind, triangle-mesh roof (8 light-sampling runs), uniform and power
 // selection (2), and 3 negative controls.
 constexpr int kRuns = 13;
-const double kAlpha = sidakAlpha(0.01, kRuns);
+const Chi2Family kChi2(kRuns);
+const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
-
-float uniform(uint64_t seed, uint64_t i, uint64_t dim) {
-    return toUnitFloat(pcgOutput(hashKeys(seed, i, dim)));
-}
-Vec2 uniform2(uint64_t seed, uint64_t i) {
-    return {uniform(seed, i, 0), uniform(seed, i, 1)};
-}
-
-void expectFits(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
-void expectRejects(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
 
 // A scene with the given shapes (JSON array body) and lights, no camera-facing requirements.
 LoadedScene makeScene(const std::string& shapes, const std::string& lights = "",
@@ -111,7 +97,7 @@ LightRun runLightChi2(const Scene& scene, const Light& light, const Vec3& refere
 void expectLightFits(const LightRun& run, const std::string& what) {
     EXPECT_EQ(run.failedSamples, 0) << what;
     EXPECT_NEAR(run.expectedMass, 1.0, 2e-3) << what << ": the pdf over the light's directions";
-    expectFits(run.outcome, what);
+    kChi2.expectFits(run.outcome, what);
 }
 
 // 1 − cos θmax of the cone subtended by a sphere at distance d = ratio · radius (in double).
@@ -311,7 +297,7 @@ TEST(LightChi2NegativeControl, SphereConeSamplesRejectAreaSamplingPdf) {
                          return double(areaToSolidAngle(1.0f / area, reference, hit.position,
                                                         hit.geometricNormal));
                      });
-    expectRejects(run.outcome, "sphere cone samples vs area-sampling pdf");
+    kChi2.expectRejects(run.outcome, "sphere cone samples vs area-sampling pdf");
 }
 
 // Quad samples judged with a density that forgets the cosine of the area-to-solid-angle
@@ -339,7 +325,7 @@ TEST(LightChi2NegativeControl, QuadSamplesRejectPdfWithoutCosine) {
         norm += e;
     const LightRun run = runLightChi2(*s.scene, light, reference, -normal, cells, 30,
                                       [&](const SurfaceHit& hit) { return noCosine(hit) / norm; });
-    expectRejects(run.outcome, "quad samples vs pdf without cosine");
+    kChi2.expectRejects(run.outcome, "quad samples vs pdf without cosine");
 }
 
 // --- Sample values: radiance, pdf at the sampled point ------------------------------------------
@@ -557,10 +543,10 @@ TEST(LightSelection, SelectedLightsFollowPmf) {
     std::vector<double> uniformPmf(lights.size(), 0.25), powerPmf;
     for (const Light* l : lights)
         powerPmf.push_back(l->power().luminance() / totalPower);
-    expectFits(
+    kChi2.expectFits(
         selectionChi2(*makeLightSelector(LightSelection::Uniform, lights), lights, uniformPmf, 60),
         "uniform light selection");
-    expectFits(
+    kChi2.expectFits(
         selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights, powerPmf, 61),
         "light selection by power");
 }
@@ -568,9 +554,9 @@ TEST(LightSelection, SelectedLightsFollowPmf) {
 TEST(LightChi2NegativeControl, PowerSelectionIsNotUniform) {
     const LoadedScene s = makeScene(kFourLightShapes, kPointLight);
     const auto lights = s.scene->lights();
-    expectRejects(selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights,
-                                std::vector<double>(lights.size(), 0.25), 61),
-                  "power selection vs uniform pmf");
+    kChi2.expectRejects(selectionChi2(*makeLightSelector(LightSelection::Power, lights), lights,
+                                      std::vector<double>(lights.size(), 0.25), 61),
+                        "power selection vs uniform pmf");
 }
 
 }  // namespace

@@ -17,35 +17,21 @@
 #include "scene/materials/mirror.h"
 #include "support/chi2.h"
 #include "support/histograms.h"
+#include "support/test_random.h"
 
 namespace rr::test {
 namespace {
 
 // Every χ² run in this file: Lambert at 4 outgoing directions, and 2 negative controls.
 constexpr int kRuns = 6;
-const double kAlpha = sidakAlpha(0.01, kRuns);
+const Chi2Family kChi2(kRuns);
+const double kAlpha = kChi2.alpha();
 // Every z-test in this file: reflection fraction at 5 incident angles, and 1 negative control.
 constexpr int kZTests = 6;
 const double kZ = zThreshold(sidakAlpha(0.01, kZTests));
 constexpr int kSamples = 1000000;
 
 const ShadingContext kCtx{};
-
-float uniform(uint64_t seed, uint64_t i, uint64_t dim) {
-    return toUnitFloat(pcgOutput(hashKeys(seed, i, dim)));
-}
-Vec2 uniform2(uint64_t seed, uint64_t i) {
-    return {uniform(seed, i, 0), uniform(seed, i, 1)};
-}
-
-void expectFits(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
-void expectRejects(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
 
 Vec3 fromAngles(double thetaDegrees, double phiDegrees) {
     const double t = thetaDegrees * M_PI / 180, p = phiDegrees * M_PI / 180;
@@ -106,7 +92,7 @@ TEST_P(LambertChi2, SampledDirectionsFollowPdf) {
     EXPECT_LE(run.declined, 10) << "declined samples: expected ~0.1 per 10^6";
     if (run.declined > 0)
         std::printf("[info] %d of %d samples declined on the horizon\n", run.declined, kSamples);
-    expectFits(run.outcome, "Lambert, wo = " + str(wo));
+    kChi2.expectFits(run.outcome, "Lambert, wo = " + str(wo));
 }
 
 INSTANTIATE_TEST_SUITE_P(OutgoingDirections, LambertChi2, ::testing::ValuesIn(kWos));
@@ -116,14 +102,14 @@ TEST(LambertChi2NegativeControl, SamplesBelowRejectThePdfAbove) {
     const Vec3 wo = fromAngles(120, -60);
     const LambertRun run = lambertChi2(
         wo, 200, [&](const Vec3& wi) { return m.pdf(kCtx, Vec3(wo.x, wo.y, -wo.z), wi); });
-    expectRejects(run.outcome, "Lambert below vs pdf above");
+    kChi2.expectRejects(run.outcome, "Lambert below vs pdf above");
 }
 
 TEST(LambertChi2NegativeControl, SamplesRejectUniformHemispherePdf) {
     const Vec3 wo = fromAngles(50, 30);
     const LambertRun run =
         lambertChi2(wo, 201, [](const Vec3& wi) { return wi.z > 0 ? 0.5 / M_PI : 0.0; });
-    expectRejects(run.outcome, "Lambert vs uniform hemisphere");
+    kChi2.expectRejects(run.outcome, "Lambert vs uniform hemisphere");
 }
 
 TEST(Lambert, SampleWeightIsEvalOverPdf) {

@@ -22,7 +22,8 @@ namespace {
 // Every χ² run in this file: 5 per sampler type (pooled 1-D, pooled 2-D, fixed-index 1-D,
 // fixed-index 2-D, pooled repeats) × 3 types, and 2 negative controls.
 constexpr int kRuns = 17;
-const double kAlpha = sidakAlpha(0.01, kRuns);
+const Chi2Family kChi2(kRuns);
+const double kAlpha = kChi2.alpha();
 // Every correlation z-test in this file: 5 pairs × 3 types, and 1 negative control.
 constexpr int kZTests = 16;
 const double kZ = zThreshold(sidakAlpha(0.01, kZTests));
@@ -30,15 +31,6 @@ const double kZ = zThreshold(sidakAlpha(0.01, kZTests));
 constexpr SamplerType kAllTypes[] = {SamplerType::Independent, SamplerType::Stratified,
                                      SamplerType::Hammersley};
 constexpr SamplerType kStructuredTypes[] = {SamplerType::Stratified, SamplerType::Hammersley};
-
-void expectFits(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
-void expectRejects(const Chi2Outcome& r, const std::string& what) {
-    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
 
 // A parameterised suite over the three sampler types, named after them.
 class EachSampler : public ::testing::TestWithParam<SamplerType> {
@@ -397,7 +389,7 @@ TEST_P(EachSampler, Pooled1DValuesAreUniform) {
     for (uint32_t pixel = 0; pixel < 62500; ++pixel)
         for (uint32_t i = 0; i < 16; ++i)
             h.add(s.at(pixel, i).get1D(Decision::Time));
-    expectFits(h.test(1e6), name() + " pooled 1-D");
+    kChi2.expectFits(h.test(1e6), name() + " pooled 1-D");
 }
 
 // 2-D over a 12-sample set (a 3 × 4 strata grid for the stratified sampler).
@@ -408,7 +400,7 @@ TEST_P(EachSampler, Pooled2DValuesAreUniform) {
     for (uint32_t pixel = 0; pixel < pixels; ++pixel)
         for (uint32_t i = 0; i < 12; ++i)
             h.add(s.at(pixel, i).get2D(Decision::LightPoint, 1));
-    expectFits(planeUniformChi2(h, pixels * 12.0), name() + " pooled 2-D");
+    kChi2.expectFits(planeUniformChi2(h, pixels * 12.0), name() + " pooled 2-D");
 }
 
 // A single sample index across 10⁶ pixels: the Cranley–Patterson rotation alone must make each
@@ -418,7 +410,7 @@ TEST_P(EachSampler, OneSampleIndexIsUniformAcrossPixels1D) {
     UnitHistogram h(1000);
     for (uint32_t pixel = 0; pixel < 1000000; ++pixel)
         h.add(s.at(pixel, 5).get1D(Decision::Time));
-    expectFits(h.test(1e6), name() + " sample 5, 1-D");
+    kChi2.expectFits(h.test(1e6), name() + " sample 5, 1-D");
 }
 
 TEST_P(EachSampler, OneSampleIndexIsUniformAcrossPixels2D) {
@@ -426,7 +418,7 @@ TEST_P(EachSampler, OneSampleIndexIsUniformAcrossPixels2D) {
     PlaneHistogram h(100, 100, 0, 1, 0, 1);
     for (uint32_t pixel = 0; pixel < 1000000; ++pixel)
         h.add(s.at(pixel, 21).get2D(Decision::BsdfDirection, 2));
-    expectFits(planeUniformChi2(h, 1e6), name() + " sample 21, 2-D");
+    kChi2.expectFits(planeUniformChi2(h, 1e6), name() + " sample 21, 2-D");
 }
 
 // Repeated draws (4 per sample) pooled: 15 625 pixels × 16 samples × 4 repeats.
@@ -437,7 +429,7 @@ TEST_P(EachSampler, PooledRepeatsAreUniform) {
         for (uint32_t i = 0; i < 16; ++i)
             for (uint32_t r = 0; r < 4; ++r)
                 h.add(s.at(pixel, i).get1D(DecisionSite{Decision::LightSelect, 1, r, 4}));
-    expectFits(h.test(1e6), name() + " pooled repeats");
+    kChi2.expectFits(h.test(1e6), name() + " pooled repeats");
 }
 
 // Negative controls: the 1-D set-up rejects a mild distortion x^1.02 of uniform values
@@ -449,7 +441,7 @@ TEST(SamplerChi2NegativeControl, Rejects1DPowerDistortion) {
     for (uint32_t pixel = 0; pixel < 62500; ++pixel)
         for (uint32_t i = 0; i < 16; ++i)
             h.add(std::pow(s.at(pixel, i).get1D(Decision::Time), 1.02f));
-    expectRejects(h.test(1e6), "x^1.02");
+    kChi2.expectRejects(h.test(1e6), "x^1.02");
 }
 
 TEST(SamplerChi2NegativeControl, Rejects2DDependentCoordinates) {
@@ -461,7 +453,7 @@ TEST(SamplerChi2NegativeControl, Rejects2DDependentCoordinates) {
             const Vec2 p = s.at(pixel, i).get2D(Decision::LightPoint, 1);
             h.add(Vec2(p.x, float(frac(p.x + 0.5 * p.y))));  // y' is uniform, but depends on x
         }
-    expectRejects(planeUniformChi2(h, pixels * 12.0), "(x, frac(x + y/2))");
+    kChi2.expectRejects(planeUniformChi2(h, pixels * 12.0), "(x, frac(x + y/2))");
 }
 
 // --- Stratification -------------------------------------------------------------------------

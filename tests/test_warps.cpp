@@ -14,6 +14,7 @@
 #include "sampling/warps.h"
 #include "support/chi2.h"
 #include "support/histograms.h"
+#include "support/test_random.h"
 
 namespace rr::test {
 namespace {
@@ -22,16 +23,8 @@ namespace {
 // disk, cosine hemisphere, uniform hemisphere, sphere, 4 cones, triangle (9 positive) and
 // 6 negative controls.
 constexpr int kRuns = 15;
-const double kAlpha = sidakAlpha(0.01, kRuns);
+const Chi2Family kChi2(kRuns);
 constexpr int kSamples = 1000000;
-
-// The renderer's counter-based generator: coordinate `dim` of sample `i` of stream `seed`.
-float uniform(uint64_t seed, uint64_t i, uint64_t dim) {
-    return toUnitFloat(pcgOutput(hashKeys(seed, i, dim)));
-}
-Vec2 uniform2(uint64_t seed, uint64_t i) {
-    return {uniform(seed, i, 0), uniform(seed, i, 1)};
-}
 
 // u values at and next to the edges of [0,1)², where warps divide by zero or round to 1.
 std::vector<Vec2> edgeCases() {
@@ -76,19 +69,6 @@ Chi2Outcome planeChi2(const std::function<Vec2(Vec2)>& warp, uint64_t seed,
     for (int i = 0; i < kSamples; ++i)
         h.add(warp(uniform2(seed, i)));
     return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples));
-}
-
-std::string testName() {
-    return ::testing::UnitTest::GetInstance()->current_test_info()->name();
-}
-// Logs every outcome (so a passing run still shows its p-values) and checks it.
-void expectFits(const Chi2Outcome& r, const std::string& what = testName()) {
-    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_TRUE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
-}
-void expectRejects(const Chi2Outcome& r, const std::string& what = testName()) {
-    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
-    EXPECT_FALSE(r.passes(kAlpha)) << what << ": " << r.describe() << " (alpha " << kAlpha << ")";
 }
 
 double diskPdf(const Vec2& p) {
@@ -182,27 +162,27 @@ TEST(Warps, TriangleMapSendsCornersAndDiagonalWhereExpected) {
 
 TEST(WarpsChi2, UniformDisk) {
     const Chi2Outcome r = planeChi2(diskWarp, 1, diskPdf, 50, 50, -1, 1, -1, 1);
-    expectFits(r);
+    kChi2.expectFits(r);
 }
 
 // The hemisphere boundary z = 0 lies in the middle of the (odd) 41 z-cells over [-1, 1].
 TEST(WarpsChi2, CosineHemisphere) {
     const Chi2Outcome r = directionChi2(
         squareToCosineHemisphere, 2, [](const Vec3& w) { return cosineHemispherePdf(w); }, 41, 60);
-    expectFits(r);
+    kChi2.expectFits(r);
 }
 
 TEST(WarpsChi2, UniformHemisphere) {
     const Chi2Outcome r = directionChi2(
         squareToUniformHemisphere, 3, [](const Vec3& w) { return uniformHemispherePdf(w); }, 41,
         60);
-    expectFits(r);
+    kChi2.expectFits(r);
 }
 
 TEST(WarpsChi2, UniformSphere) {
     const Chi2Outcome r = directionChi2(
         squareToUniformSphere, 4, [](const Vec3&) { return uniformSpherePdf(); }, 40, 50);
-    expectFits(r);
+    kChi2.expectFits(r);
 }
 
 // The band [zMin, 1] is chosen so that the cone spans 20.5 z-cells: its edge falls in the middle
@@ -224,7 +204,7 @@ TEST_P(ConeChi2, UniformCone) {
     // would repeat the same histogram (and the Šidák correction assumes independent runs).
     const Chi2Outcome r =
         coneChi2(GetParam(), 100 + std::bit_cast<uint32_t>(GetParam()), GetParam());
-    expectFits(r, "cone with 1 - cos(theta_max) = " + std::to_string(GetParam()));
+    kChi2.expectFits(r, "cone with 1 - cos(theta_max) = " + std::to_string(GetParam()));
 }
 
 // Hemisphere, wide, narrow and the cone of a sphere 10 radii away (via coneOneMinusCos).
@@ -239,7 +219,7 @@ double trianglePdf(const Vec2& b) {
 
 TEST(WarpsChi2, UniformTriangle) {
     const Chi2Outcome r = planeChi2(squareToUniformTriangle, 6, trianglePdf, 40, 37, 0, 1, 0, 1);
-    expectFits(r);
+    kChi2.expectFits(r);
 }
 
 // --- Negative controls: the same set-ups must reject a wrong density --------------------------
@@ -247,7 +227,7 @@ TEST(WarpsChi2, UniformTriangle) {
 TEST(WarpsChi2NegativeControl, CosineSamplesAreNotUniformOnTheHemisphere) {
     const Chi2Outcome r = directionChi2(
         squareToCosineHemisphere, 2, [](const Vec3& w) { return uniformHemispherePdf(w); }, 41, 60);
-    expectRejects(r);
+    kChi2.expectRejects(r);
 }
 
 // A 10% linear tilt of the sphere density (λ ≈ 3000 against ~2000 degrees of freedom).
@@ -255,7 +235,7 @@ TEST(WarpsChi2NegativeControl, SphereSamplesRejectATiltedDensity) {
     const Chi2Outcome r = directionChi2(
         squareToUniformSphere, 4,
         [](const Vec3& w) { return (1 + 0.1 * w.z) * uniformSpherePdf(); }, 40, 50);
-    expectRejects(r);
+    kChi2.expectRejects(r);
     EXPECT_TRUE(r.failure.empty()) << "the control should fail on counts, not on support";
 }
 
@@ -269,20 +249,20 @@ TEST(WarpsChi2NegativeControl, DiskSamplesRejectARadialSlope) {
             return r2 < 1 ? (1 + 0.1 * (1 - 2 * r2)) / M_PI : 0.0;
         },
         50, 50, -1, 1, -1, 1);
-    expectRejects(r);
+    kChi2.expectRejects(r);
     EXPECT_TRUE(r.failure.empty()) << "the control should fail on counts, not on support";
 }
 
 // A narrow cone checked against a cone 2% wider: the histogram resolves the edge.
 TEST(WarpsChi2NegativeControl, NarrowConeRejectsASlightlyWiderCone) {
     const Chi2Outcome r = coneChi2(1e-3f, 5, 1.02e-3f);
-    expectRejects(r);
+    kChi2.expectRejects(r);
 }
 
 // A narrow cone checked against a cone 2% narrower: samples where the density is zero.
 TEST(WarpsChi2NegativeControl, NarrowConeRejectsASlightlyNarrowerCone) {
     const Chi2Outcome r = coneChi2(1e-3f, 5, 0.98e-3f);
-    expectRejects(r);
+    kChi2.expectRejects(r);
 }
 
 // Uniform triangle samples against the linear density 6·b0 on the triangle.
@@ -290,7 +270,7 @@ TEST(WarpsChi2NegativeControl, TriangleSamplesRejectALinearDensity) {
     const Chi2Outcome r = planeChi2(
         squareToUniformTriangle, 6,
         [](const Vec2& b) { return trianglePdf(b) > 0 ? 6.0 * b.x : 0.0; }, 40, 37, 0, 1, 0, 1);
-    expectRejects(r);
+    kChi2.expectRejects(r);
 }
 
 }  // namespace

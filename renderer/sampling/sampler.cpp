@@ -56,11 +56,17 @@ Sampler::Sampler(SamplerType type, uint32_t seed, uint32_t setSize)
     gridColumns_ = gridColumnsFor(setSize_);
 }
 
-// Key of the pattern shared by all samples of one set, for one decision site of one pixel.
-uint64_t PixelSample::siteKey(const DecisionSite& site) const {
-    const uint32_t set = sample_ / sampler_->setSize_;
-    const uint64_t siteOnly = DecisionSite{site.decision, site.vertex}.key();
-    return hashKeys(sampler_->seed_, pixel_, set, siteOnly);
+PixelSample::SetPosition PixelSample::setPosition(const DecisionSite& site) const {
+    // The pattern is shared by all samples of one set, for one decision site of one pixel;
+    // the repeats of a site are stratified together with the set's samples.
+    const Sampler& s = *sampler_;
+    SetPosition p;
+    const uint32_t set = sample_ / s.setSize_;
+    p.key = hashKeys(s.seed_, pixel_, set, DecisionSite{site.decision, site.vertex}.key());
+    p.size = s.setSize_ * site.repeatCount;
+    p.index = (sample_ % s.setSize_) * site.repeatCount + site.repeat;
+    p.point = permuteIndex(p.index, p.size, static_cast<uint32_t>(p.key));
+    return p;
 }
 
 float PixelSample::get1D(const DecisionSite& site) const {
@@ -68,10 +74,7 @@ float PixelSample::get1D(const DecisionSite& site) const {
     if (s.type_ == SamplerType::Independent)
         return toUnitFloat(pcgOutput(hashKeys(s.seed_, pixel_, sample_, site.key())));
 
-    const uint64_t key = siteKey(site);
-    const uint32_t n = s.setSize_ * site.repeatCount;
-    const uint32_t j = (sample_ % s.setSize_) * site.repeatCount + site.repeat;
-    const uint32_t k = permuteIndex(j, n, static_cast<uint32_t>(key));
+    const auto [key, n, j, k] = setPosition(site);
     float x;
     if (s.type_ == SamplerType::Stratified) {
         const float jitter = toUnitFloat(pcgOutput(hashKeys(key, j, 1)));
@@ -89,10 +92,7 @@ Vec2 PixelSample::get2D(const DecisionSite& site) const {
         return {toUnitFloat(pcgOutput(h)), toUnitFloat(pcgOutput(mix64(h + 1)))};
     }
 
-    const uint64_t key = siteKey(site);
-    const uint32_t n = s.setSize_ * site.repeatCount;
-    const uint32_t j = (sample_ % s.setSize_) * site.repeatCount + site.repeat;
-    const uint32_t k = permuteIndex(j, n, static_cast<uint32_t>(key));
+    const auto [key, n, j, k] = setPosition(site);
     Vec2 p;
     if (s.type_ == SamplerType::Stratified) {
         const uint32_t cols = site.repeatCount == 1 ? s.gridColumns_ : gridColumnsFor(n);

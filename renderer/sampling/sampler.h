@@ -42,7 +42,13 @@ class PixelSample {
     friend class Sampler;
     PixelSample(const Sampler* s, uint32_t pixel, uint32_t sample)
         : sampler_(s), pixel_(pixel), sample_(sample) {}
-    uint64_t siteKey(const DecisionSite& site) const;
+    // Where this sample sits in its structured set for one decision site: the set's pattern
+    // key, the set size, this draw's index, and the (permuted) point of the pattern it takes.
+    struct SetPosition {
+        uint64_t key;
+        uint32_t size, index, point;
+    };
+    SetPosition setPosition(const DecisionSite& site) const;
 
     const Sampler* sampler_;
     uint32_t pixel_;

@@ -1,9 +1,11 @@
 #include "support/chi2.h"
 
+#include <gtest/gtest.h>
+
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
-#include <numeric>
+#include <cstdio>
 #include <sstream>
 
 namespace rr::test {
@@ -60,6 +62,24 @@ double sidakAlpha(double alpha, int tests) {
 
 double zThreshold(double alpha) {
     return boost::math::quantile(boost::math::normal(), 1.0 - alpha / 2.0);
+}
+
+namespace {
+std::string orTestName(std::string what) {
+    return what.empty() ? ::testing::UnitTest::GetInstance()->current_test_info()->name() : what;
+}
+}  // namespace
+
+void Chi2Family::expectFits(const Chi2Outcome& r, std::string what) const {
+    what = orTestName(std::move(what));
+    std::printf("[chi2] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_TRUE(r.passes(alpha_)) << what << ": " << r.describe() << " (alpha " << alpha_ << ")";
+}
+
+void Chi2Family::expectRejects(const Chi2Outcome& r, std::string what) const {
+    what = orTestName(std::move(what));
+    std::printf("[chi2, negative control] %s: %s\n", what.c_str(), r.describe().c_str());
+    EXPECT_FALSE(r.passes(alpha_)) << what << ": " << r.describe() << " (alpha " << alpha_ << ")";
 }
 
 }  // namespace rr::test

@@ -29,4 +29,20 @@ double sidakAlpha(double alpha, int tests);
 // Two-sided z-test threshold |z| for significance `alpha`.
 double zThreshold(double alpha);
 
+// The χ² runs of one test program, Šidák-corrected to family-wise level `familyAlpha`.
+// Outcomes are printed, so the p-values of passing runs are visible in the test log.
+class Chi2Family {
+  public:
+    explicit Chi2Family(int runs, double familyAlpha = 0.01)
+        : alpha_(sidakAlpha(familyAlpha, runs)) {}
+    double alpha() const { return alpha_; }
+    // The samples must fit the claimed density. `what` defaults to the running test's name.
+    void expectFits(const Chi2Outcome& outcome, std::string what = "") const;
+    // Negative control: a deliberately wrong density must be rejected, or the test is blind.
+    void expectRejects(const Chi2Outcome& outcome, std::string what = "") const;
+
+  private:
+    double alpha_;
+};
+
 }  // namespace rr::test
