@@ -169,6 +169,21 @@ INSTANTIATE_TEST_SUITE_P(
         return name;
     });
 
+// An output that cannot be written is found before rendering (status 2), not after.
+TEST(Cli, UnwritableOutputIsRejectedBeforeRendering) {
+    const fs::path dir = scratchDirectory();
+    fs::create_directories(dir / "taken.exr");
+    for (const fs::path& out : {dir / "taken.exr", fs::path("/proc/rr_test/out.exr")}) {
+        std::string errors;
+        EXPECT_EQ(run({"render", kScene, "--spp", "100000", "--out", out.string()}, dir, &errors),
+                  2)
+            << out;
+        EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+        EXPECT_NE(errors.find("--out"), std::string::npos) << errors;
+    }
+    EXPECT_TRUE(fs::is_empty(dir / "taken.exr"));
+}
+
 TEST(Cli, TimeLimitRecordsTheSamplesReached) {
     const fs::path dir = scratchDirectory();
     std::string errors;

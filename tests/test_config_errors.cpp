@@ -110,7 +110,50 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"shape without material", {"/shapes/1/material=null"}, "/shapes/1/material"},
         BadInput{"missing camera", {"/camera/position=null"}, "/camera/position"},
         BadInput{"set with missing parent", {"/camera/lens/radius=1"}, "/camera/lens/radius"},
-        BadInput{"set with array index out of range", {"/shapes/7/radius=1"}, "/shapes/7/radius"}),
+        BadInput{"set with array index out of range", {"/shapes/7/radius=1"}, "/shapes/7/radius"},
+        BadInput{"set with array index beyond 64 bits",
+                 {"/shapes/99999999999999999999999={}"},
+                 "/shapes/99999999999999999999999"},
+        BadInput{"set through array index beyond 64 bits",
+                 {"/shapes/99999999999999999999999/radius=1"},
+                 "/shapes/99999999999999999999999/radius"},
+        BadInput{
+            "huge number", {"/shapes/0/emission/radiance=1e39"}, "/shapes/0/emission/radiance"},
+        BadInput{"tiny non-zero number",
+                 {"/shapes/0/emission/radiance=1e-50"},
+                 "/shapes/0/emission/radiance"},
+        BadInput{"huge array element", {"/camera/position=[0, 1e11, 3]"}, "/camera/position/1"},
+        BadInput{"tiny array element",
+                 {"/shapes/0/emission/radiance=[1, 1e-31, 1]"},
+                 "/shapes/0/emission/radiance/1"},
+        BadInput{"huge aperture",
+                 {"/camera/type=\"thin_lens\"", "/camera/aperture_radius=1e39",
+                  "/camera/focus_distance=3"},
+                 "/camera/aperture_radius"},
+        BadInput{"projective matrix",
+                 {"/shapes/1/transform={\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0.5,1]}"},
+                 "/shapes/1/transform/matrix/14"},
+        BadInput{"matrix with bottom-right not one",
+                 {"/shapes/1/transform={\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,2]}"},
+                 "/shapes/1/transform/matrix/15"},
+        BadInput{"singular matrix",
+                 {"/shapes/0/transform={\"matrix\":[1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]}"},
+                 "/shapes/0/transform"},
+        BadInput{"nearly singular shear",
+                 {"/shapes/0/transform={\"matrix\":[1,1,0,0, 0,1e-7,0,0, 0,0,1,0, 0,0,0,1]}"},
+                 "/shapes/0/transform"},
+        BadInput{"duplicate key in a --set value",
+                 {"/integrator={\"type\":\"path\",\"type\":\"direct\"}"},
+                 "/integrator/type"},
+        BadInput{"zero up", {"/camera/up=[0, 0, 0]"}, "/camera/up"},
+        BadInput{"up parallel to the view", {"/camera/up=[0, 0, 1e-5]"}, "/camera/up"},
+        BadInput{"too many pixels", {"/render/resolution=[16384, 16384]"}, "/render/resolution"},
+        BadInput{"spp times light_samples beyond 2^24",
+                 {"/render/spp=32768", "/integrator={\"type\":\"direct\",\"light_samples\":1024}"},
+                 "/render/spp"},
+        BadInput{"spp times bsdf_samples beyond 2^24",
+                 {"/render/spp=65536", "/integrator={\"type\":\"direct\",\"bsdf_samples\":512}"},
+                 "/render/spp"}),
     [](const ::testing::TestParamInfo<BadInput>& param) {
         std::string name = param.param.what;
         for (char& c : name)
@@ -124,6 +167,78 @@ TEST(ConfigErrors, MalformedJsonNamesLineAndColumn) {
         FAIL() << "expected a ConfigError";
     } catch (const ConfigError& e) {
         EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+    }
+}
+
+// Values near the limits that must still load: the magnitude bound applies to real numbers
+// only, and a uniformly tiny scale is not singular.
+TEST(ConfigErrors, ValuesNearTheLimitsLoad) {
+    const std::vector<std::vector<std::string>> valid = {
+        {"/shapes/1/transform={\"scale\":0.0001}"},
+        {"/shapes/0/transform={\"scale\":0.0001}"},
+        {"/shapes/1/transform={\"matrix\":[1e-4,0,0,0, 0,1e-4,0,0, 0,0,1e-4,0, 0,0,0,1]}"},
+        {"/shapes/1/transform={\"scale\":1e4}"},
+        {"/camera/up=[0, 1e-5, 0]"},
+        {"/camera/up=[0, 1e-10, 0]"},
+        {"/shapes/0/emission/radiance=1e10"},
+        {"/shapes/0/emission/radiance=[1e-10, 0, 1]"},
+        {"/shapes/1/transform={\"matrix\": [1, 1e-17, 0, 0, -2e-17, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, "
+         "1]}"},
+        {"/render/seed=4294967295"},
+        {"/render/spp=16777216"},
+        {"/render/resolution=[8192, 8192]"},
+        {"/render/spp=16384", "/integrator={\"type\":\"direct\",\"light_samples\":1024}"},
+    };
+    for (const auto& overrides : valid)
+        EXPECT_EQ(errorPointer(kValid, overrides), "<no error>") << overrides.back();
+}
+
+// `text` with the first occurrence of `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+TEST(ConfigErrors, DuplicateKeysNameThePointer) {
+    // Top level.
+    EXPECT_EQ(errorPointer(replaced(kValid, "\"render\"", "\"render\": {}, \"render\""), {}),
+              "/render");
+    // Nested in an array element, after arrays and objects that must not disturb the index.
+    EXPECT_EQ(
+        errorPointer(replaced(kValid, "\"radius\": 0.5", "\"radius\": 0.35, \"radius\": 0.1"), {}),
+        "/shapes/1/radius");
+    EXPECT_EQ(
+        errorPointer(replaced(kValid, "\"radiance\": 4", "\"radiance\": 4, \"radiance\": 4"), {}),
+        "/shapes/0/emission/radiance");
+    EXPECT_EQ(errorPointer(
+                  replaced(kValid, "\"intensity\": 1", "\"intensity\": 1, \"intensity\": 2"), {}),
+              "/lights/0/intensity");
+    // Keys are escaped as JSON pointer tokens.
+    EXPECT_EQ(errorPointer(R"({"a/b~": [1, [2, 3], {"x": 1}, {"x": 1, "x": 2}]})", {}),
+              "/a~1b~0/3/x");
+    // The same key in different objects is fine, and comments are still allowed.
+    EXPECT_EQ(errorPointer(replaced(kValid, "\"render\"", "// a comment\n  \"render\""), {}),
+              "<no error>");
+    try {
+        parseSceneText(R"({"a": 1, /* c */ "b": {"a": 2, "b": 3}, "a": 4})", "dup.json");
+        FAIL() << "expected a ConfigError";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/a");
+        EXPECT_NE(std::string(e.what()).find("duplicate key"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ConfigErrors, MagnitudeMessageSaysTheBound) {
+    try {
+        Json doc = parseSceneText(kValid, "test");
+        applyOverride(doc, "/shapes/0/emission/radiance=1e-50");
+        loadScene(doc, AssetResolver({}));
+        FAIL() << "expected a ConfigError";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("between 1e-30 and 1e10 (or 0)"), std::string::npos)
+            << e.what();
     }
 }
 

@@ -19,8 +19,8 @@
 namespace rr::test {
 namespace {
 
-// Every χ² run in this file: 5 per sampler type (pooled 1-D, pooled 2-D, fixed-index 1-D,
-// fixed-index 2-D, pooled repeats) × 3 types, and 2 negative controls.
+// Every χ² run in this file: 5 per sampler type (every-index 1-D and 2-D, fixed-index 1-D and
+// 2-D, repeats) × 3 types, and 2 negative controls.
 constexpr int kRuns = 17;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
@@ -382,25 +382,26 @@ TEST_P(EachSampler, EveryCoordinateIsInUnitInterval) {
 
 // --- Uniformity (χ²) ----------------------------------------------------------------------------
 
-// All samples of 62 500 pixels × 16, 1-D: structured samplers are exactly uniform per pixel set.
-TEST_P(EachSampler, Pooled1DValuesAreUniform) {
+// Draws from all sample indices, one draw per pixel: the χ² test needs independent
+// observations, and only pixels are independent — a structured sampler's set is dependent by
+// design (a Hammersley set is one rigidly rotated lattice, so pooling a pixel's draws would
+// over-disperse the statistic, and jittered strata would under-disperse it). Cycling the
+// index with the pixel still covers every position of the set.
+TEST_P(EachSampler, DrawsFromEveryIndexAreUniform1D) {
     const Sampler s(type(), 11, 16);
     UnitHistogram h(1000);
-    for (uint32_t pixel = 0; pixel < 62500; ++pixel)
-        for (uint32_t i = 0; i < 16; ++i)
-            h.add(s.at(pixel, i).get1D(Decision::Time));
-    kChi2.expectFits(h.test(1e6), name() + " pooled 1-D");
+    for (uint32_t pixel = 0; pixel < 1000000; ++pixel)
+        h.add(s.at(pixel, pixel % 16).get1D(Decision::Time));
+    kChi2.expectFits(h.test(1e6), name() + " every index, 1-D");
 }
 
 // 2-D over a 12-sample set (a 3 × 4 strata grid for the stratified sampler).
-TEST_P(EachSampler, Pooled2DValuesAreUniform) {
+TEST_P(EachSampler, DrawsFromEveryIndexAreUniform2D) {
     const Sampler s(type(), 12, 12);
     PlaneHistogram h(100, 100, 0, 1, 0, 1);
-    const uint32_t pixels = 83333;
-    for (uint32_t pixel = 0; pixel < pixels; ++pixel)
-        for (uint32_t i = 0; i < 12; ++i)
-            h.add(s.at(pixel, i).get2D(Decision::LightPoint, 1));
-    kChi2.expectFits(planeUniformChi2(h, pixels * 12.0), name() + " pooled 2-D");
+    for (uint32_t pixel = 0; pixel < 1000000; ++pixel)
+        h.add(s.at(pixel, pixel % 12).get2D(Decision::LightPoint, 1));
+    kChi2.expectFits(planeUniformChi2(h, 1e6), name() + " every index, 2-D");
 }
 
 // A single sample index across 10⁶ pixels: the Cranley–Patterson rotation alone must make each
@@ -421,15 +422,15 @@ TEST_P(EachSampler, OneSampleIndexIsUniformAcrossPixels2D) {
     kChi2.expectFits(planeUniformChi2(h, 1e6), name() + " sample 21, 2-D");
 }
 
-// Repeated draws (4 per sample) pooled: 15 625 pixels × 16 samples × 4 repeats.
-TEST_P(EachSampler, PooledRepeatsAreUniform) {
+// Repeated draws (4 per sample), one per pixel, cycling through samples and repeats.
+TEST_P(EachSampler, RepeatedDrawsAreUniform) {
     const Sampler s(type(), 15, 16);
     UnitHistogram h(1000);
-    for (uint32_t pixel = 0; pixel < 15625; ++pixel)
-        for (uint32_t i = 0; i < 16; ++i)
-            for (uint32_t r = 0; r < 4; ++r)
-                h.add(s.at(pixel, i).get1D(DecisionSite{Decision::LightSelect, 1, r, 4}));
-    kChi2.expectFits(h.test(1e6), name() + " pooled repeats");
+    for (uint32_t pixel = 0; pixel < 1000000; ++pixel) {
+        const uint32_t i = pixel % 16, r = (pixel / 16) % 4;
+        h.add(s.at(pixel, i).get1D(DecisionSite{Decision::LightSelect, 1, r, 4}));
+    }
+    kChi2.expectFits(h.test(1e6), name() + " repeats");
 }
 
 // Negative controls: the 1-D set-up rejects a mild distortion x^1.02 of uniform values

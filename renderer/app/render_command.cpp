@@ -1,7 +1,10 @@
 #include "app/render_command.h"
 
+#include <pthread.h>
 #include <tbb/info.h>
+#include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -79,54 +82,54 @@ std::string featureList(const SceneFeatures& f) {
     return s.empty() ? "none" : s;
 }
 
-}  // namespace
-
-int runRenderCommand(const RenderCommandOptions& o) {
-    // 1. Everything that can be wrong with the input is checked before anything is written.
+// Everything checked before rendering: a failure here writes nothing.
+struct PreparedRender {
     LoadedScene loaded;
-    Json document;
+    Json document;  // after overrides
     std::string fileText;
     fs::path out;
-    try {
-        if (!fs::is_regular_file(o.scene))
-            throw ConfigError("", "scene file not found: " + o.scene);
-        fileText = readFile(o.scene);
-        document = parseSceneText(fileText, o.scene);
-        applyCommandLine(document, o);
-        out = outputPath(o);
-        loaded = loadScene(document, AssetResolver::standard(fs::path(o.scene).parent_path()));
-    } catch (const ConfigError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    }
+};
 
-    // 2. Render.
-    const RenderSettings& settings = loaded.render;
-    RenderOptions options;
-    options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : 0) : settings.spp;
-    options.timeLimit = o.timeLimit;
-    options.seed = settings.seed;
-    options.threads = o.threads;
-    options.sampler = settings.sampler;
-    options.samplerSetSize = settings.spp;
-    options.cancel = &installInterruptHandler();
-    const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+// Creates the output directory and proves a file can be written there, so a render is never
+// thrown away for want of a writable destination.
+void checkOutputWritable(const fs::path& out) {
+    std::error_code ec;
+    if (fs::is_directory(out, ec))
+        throw ConfigError("", "--out names a directory: " + out.string());
+    const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    fs::create_directories(dir, ec);
+    std::string probeName = out.stem().string();
+    probeName.insert(0, 1, '.').append(".probe").append(std::to_string(::getpid()));
+    const fs::path probe = dir / probeName;
+    const bool writable = std::ofstream(probe).good();
+    fs::remove(probe, ec);
+    if (!writable) throw ConfigError("", "--out: cannot write in " + dir.string());
+}
 
-    Film film(settings.width, settings.height);
-    ProgressBar bar;
-    const RenderStats stats = render(*loaded.scene, *loaded.integrator, options, film,
-                                     [&](const RenderProgress& p) { bar.update(p); });
+PreparedRender prepare(const RenderCommandOptions& o) {
+    PreparedRender p;
+    if (!fs::is_regular_file(o.scene)) throw ConfigError("", "scene file not found: " + o.scene);
+    p.fileText = readFile(o.scene);
+    p.document = parseSceneText(p.fileText, o.scene);
+    applyCommandLine(p.document, o);
+    p.out = outputPath(o);
+    p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
+    checkOutputWritable(p.out);
+    return p;
+}
 
-    // 3. Write the EXR (with provenance) and the preview, each atomically.
-    ExrImage image = filmToExr(film);
-    auto& a = image.attributes;
+void addMetadata(const RenderCommandOptions& o, const PreparedRender& p,
+                 const RenderOptions& options, const RenderStats& stats, int threads,
+                 ExrImage* image) {
+    const RenderSettings& settings = p.loaded.render;
+    auto& a = image->attributes;
     a["renderer.version"] = std::string(kRendererVersion);
     a["renderer.scene"] = o.scene;
-    a["renderer.sceneFileSha256"] = sha256Hex(fileText);
-    a["renderer.sceneSha256"] = sha256Hex(document.dump());  // after overrides
+    a["renderer.sceneFileSha256"] = sha256Hex(p.fileText);
+    a["renderer.sceneSha256"] = sha256Hex(p.document.dump());  // after overrides
     a["renderer.overrides"] = Json(o.overrides).dump();
-    a["renderer.integrator"] = loaded.integrator->name();
-    a["renderer.integratorParameters"] = loaded.integrator->parameters().dump();
+    a["renderer.integrator"] = p.loaded.integrator->name();
+    a["renderer.integratorParameters"] = p.loaded.integrator->parameters().dump();
     a["renderer.spp"] = static_cast<int>(stats.spp);
     a["renderer.sppRequested"] = static_cast<int>(options.spp);
     a["renderer.timeLimit"] = o.timeLimit;
@@ -134,7 +137,7 @@ int runRenderCommand(const RenderCommandOptions& o) {
     a["renderer.sampler"] = std::string(samplerName(settings.sampler));
     a["renderer.threads"] = threads;
     a["renderer.renderTime"] = stats.seconds;
-    a["renderer.features"] = featureList(loaded.scene->features());
+    a["renderer.features"] = featureList(p.loaded.scene->features());
     a["renderer.rays.camera"] = static_cast<double>(stats.rays.camera);
     a["renderer.rays.extension"] = static_cast<double>(stats.rays.extension);
     a["renderer.rays.shadow"] = static_cast<double>(stats.rays.shadow);
@@ -143,8 +146,16 @@ int runRenderCommand(const RenderCommandOptions& o) {
     a["renderer.channels"] = std::string(
         "R,G,B: mean radiance; variance.R,variance.G,variance.B: variance of the pixel mean; "
         "samples: samples in the pixel");
+}
+
+// Writes the EXR and the preview with SIGINT held back, so Ctrl-C cannot interrupt a write
+// half-way (the signal is delivered once the files are in place).
+void writeOutputs(const RenderCommandOptions& o, const fs::path& out, ExrImage& image) {
+    sigset_t interrupt, previous;
+    sigemptyset(&interrupt);
+    sigaddset(&interrupt, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &interrupt, &previous);
     try {
-        if (out.has_parent_path()) fs::create_directories(out.parent_path());
         writeExr(out, image);
         if (o.preview) {
             fs::path png = out;
@@ -152,6 +163,52 @@ int runRenderCommand(const RenderCommandOptions& o) {
             writePngPreview(png, image.width, image.height, image.channels["R"],
                             image.channels["G"], image.channels["B"], o.exposure);
         }
+    } catch (...) {
+        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+        throw;
+    }
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+}
+
+}  // namespace
+
+int runRenderCommand(const RenderCommandOptions& o) {
+    PreparedRender p;
+    try {
+        p = prepare(o);
+    } catch (const ConfigError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const fs::filesystem_error& e) {  // unreadable scene or asset: bad input too
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+
+    const RenderSettings& settings = p.loaded.render;
+    RenderOptions options;
+    // A time-limited render stops at 2^24 spp at most: the sample-count channel is a float.
+    constexpr uint32_t kMaxSpp = 1u << 24;
+    options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
+    options.timeLimit = o.timeLimit;
+    options.seed = settings.seed;
+    options.threads = o.threads;
+    options.sampler = settings.sampler;
+    options.samplerSetSize = settings.spp;
+    options.cancel = &installInterruptHandler();
+    const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+
+    ProgressBar bar;
+    RenderStats stats;
+    try {
+        Film film(settings.width, settings.height);
+        stats = render(*p.loaded.scene, *p.loaded.integrator, options, film,
+                       [&](const RenderProgress& progress) { bar.update(progress); });
+        ExrImage image = filmToExr(film);
+        addMetadata(o, p, options, stats, threads, &image);
+        writeOutputs(o, p.out, image);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;
@@ -161,13 +218,13 @@ int runRenderCommand(const RenderCommandOptions& o) {
     std::snprintf(
         summary, sizeof summary,
         "%s: %s, %dx%d, %u spp in %.2f s (%.2f Mrays/s, %.3f Msamples/s, %d threads)%s -> %s",
-        o.scene.c_str(), loaded.integrator->name().c_str(), settings.width, settings.height,
+        o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width, settings.height,
         stats.spp, stats.seconds, stats.rays.total() / stats.seconds * 1e-6,
         double(stats.spp) * settings.width * settings.height / stats.seconds * 1e-6, threads,
-        stats.interrupted ? " [interrupted]" : "", out.c_str());
+        stats.interrupted ? " [interrupted]" : "", p.out.c_str());
     bar.finish(summary);
     if (stats.nonFiniteSamples > 0)
-        std::fprintf(stderr, "warning: %llu non-finite samples were dropped\n",
+        std::fprintf(stderr, "warning: %llu non-finite samples were replaced by zero\n",
                      static_cast<unsigned long long>(stats.nonFiniteSamples));
     return stats.interrupted ? 130 : 0;
 }

@@ -64,7 +64,7 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
         const Rgb f = material->eval(ctx, wo, wi);
         if (f.isBlack()) continue;
         ++rays.shadow;
-        if (scene.occluded(hit.spawnTo(ls.position))) continue;
+        if (scene.occluded(hit.spawnTo(ls.position, ls.normal, ls.errorScale))) continue;
         const float lightPdf = pmf * ls.pdf;
         const float w =
             ls.isDelta ? 1.0f : weight(nLight, lightPdf, nBsdf, material->pdf(ctx, wo, wi));

@@ -24,7 +24,7 @@ Rgb PathTracer::sampleLight(const Scene& scene, const SurfaceHit& hit, const Mat
     const Rgb f = material.eval(ctx, wo, wi);
     if (f.isBlack()) return Rgb(0.0f);
     ++rays.shadow;
-    if (scene.occluded(hit.spawnTo(ls.position))) return Rgb(0.0f);
+    if (scene.occluded(hit.spawnTo(ls.position, ls.normal, ls.errorScale))) return Rgb(0.0f);
 
     const float lightPdf = selectPmf * ls.pdf;
     const float weight =
@@ -38,6 +38,10 @@ Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sa
     const int maxDepth = settings_.maxDepth < 0 ? kDepthCap : settings_.maxDepth;
 
     Rgb radiance(0.0f), throughput(1.0f);
+    // Product of η² over the refractions so far: radiance is scaled by 1/η² entering a denser
+    // medium and back on leaving, which must not make Russian roulette kill paths inside glass
+    // whose final weight is 1 (pbrt-v4's etaScale).
+    float etaScale = 1;
     bool countEmission = true;  // camera ray, or a specular bounce, or BSDF-only tracing
     float bsdfPdf = 0;
     Vec3 previous;
@@ -72,6 +76,7 @@ Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sa
                               sample.get2D(Decision::BsdfDirection, vertex), &bs))
             break;
         throughput *= bs.weight;
+        etaScale *= bs.eta * bs.eta;
         if (throughput.isBlack()) break;
         countEmission = !nee_ || bs.isSpecular();
         bsdfPdf = bs.pdf;
@@ -79,7 +84,7 @@ Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sa
         ray = hit.spawn(frame.toWorld(bs.wi));
 
         if (depth + 1 >= settings_.rrDepth) {
-            const float survive = std::min(1.0f, throughput.maxComponent());
+            const float survive = std::min(1.0f, throughput.maxComponent() * etaScale);
             if (sample.get1D(Decision::RussianRoulette, vertex) >= survive) break;
             throughput *= 1.0f / survive;
         }

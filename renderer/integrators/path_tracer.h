@@ -3,7 +3,7 @@
 //  - `path_mis`: next-event estimation at every non-specular vertex plus BSDF sampling,
 //    combined with Veach's power heuristic (Veach & Guibas 1995).
 // Path length: `maxDepth` scattering events (−1: unlimited up to a safety cap), Russian
-// roulette from `rrDepth` on with survival probability min(1, max throughput).
+// roulette from `rrDepth` on with survival probability min(1, max throughput · Πη²).
 #pragma once
 
 #include "integrators/integrator.h"

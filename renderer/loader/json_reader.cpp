@@ -22,6 +22,17 @@ std::string formatNumber(double v) {
     return s.str();
 }
 
+// See kMinMagnitude/kMaxMagnitude in the header.
+bool hasSafeMagnitude(double v) {
+    const double a = std::abs(v);
+    return a == 0 || (a >= kMinMagnitude && a <= kMaxMagnitude);
+}
+
+std::string magnitudeMessage(double v) {
+    static_assert(kMinMagnitude == 1e-30 && kMaxMagnitude == 1e10, "update the message");
+    return "expected a number of magnitude between 1e-30 and 1e10 (or 0), got " + formatNumber(v);
+}
+
 }  // namespace
 
 bool Range::contains(double v) const {
@@ -84,29 +95,31 @@ const Json* ObjectReader::rawOptional(const std::string& key) {
     return &value_.at(key);
 }
 
-double ObjectReader::checkedNumber(const Json& v, const std::string& key, Range range) const {
+double ObjectReader::checkedNumber(const Json& v, const std::string& key, Range range,
+                                   bool real) const {
     if (!v.is_number()) fail(key, "expected a number, got " + typeName(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(key, "expected a finite number");
+    if (real && !hasSafeMagnitude(d)) fail(key, magnitudeMessage(d));
     if (!range.contains(d))
         fail(key, "expected a number " + range.describe() + ", got " + formatNumber(d));
     return d;
 }
 
 double ObjectReader::getNumber(const std::string& key, Range range) {
-    return checkedNumber(raw(key), key, range);
+    return checkedNumber(raw(key), key, range, /*real=*/true);
 }
 
 double ObjectReader::getNumber(const std::string& key, double fallback, Range range) {
     const Json* v = rawOptional(key);
-    return v ? checkedNumber(*v, key, range) : fallback;
+    return v ? checkedNumber(*v, key, range, /*real=*/true) : fallback;
 }
 
 int64_t ObjectReader::getInt(const std::string& key, int64_t fallback, Range range) {
     const Json* v = rawOptional(key);
     if (!v) return fallback;
     if (!v->is_number_integer()) fail(key, "expected an integer, got " + typeName(*v));
-    return static_cast<int64_t>(checkedNumber(*v, key, range));
+    return static_cast<int64_t>(checkedNumber(*v, key, range, /*real=*/false));
 }
 
 bool ObjectReader::getBool(const std::string& key, bool fallback) {
@@ -149,10 +162,12 @@ std::vector<double> ObjectReader::getNumbers(const std::string& key, size_t coun
         const std::string at = pointerTo(key) + "/" + std::to_string(i);
         if (!e.is_number() || !std::isfinite(e.get<double>()))
             throw ConfigError(at, "expected a finite number, got " + typeName(e));
-        if (!range.contains(e.get<double>()))
-            throw ConfigError(at, "expected a number " + range.describe() + ", got " +
-                                      formatNumber(e.get<double>()));
-        out.push_back(e.get<double>());
+        const double d = e.get<double>();
+        if (!hasSafeMagnitude(d)) throw ConfigError(at, magnitudeMessage(d));
+        if (!range.contains(d))
+            throw ConfigError(at,
+                              "expected a number " + range.describe() + ", got " + formatNumber(d));
+        out.push_back(d);
     }
     return out;
 }
@@ -169,7 +184,7 @@ Vec3 ObjectReader::getVec3(const std::string& key, const Vec3& fallback) {
 Rgb ObjectReader::getRgb(const std::string& key, Range range) {
     const Json& v = raw(key);
     if (v.is_number()) {
-        const float s = static_cast<float>(checkedNumber(v, key, range));
+        const float s = static_cast<float>(checkedNumber(v, key, range, /*real=*/true));
         return Rgb(s);
     }
     if (!v.is_array()) fail(key, "expected a colour: a number or an array of 3 numbers");

@@ -18,6 +18,15 @@ namespace rr {
 
 using Json = nlohmann::json;
 
+// Every real-valued number in a scene (not the integers: they have their own Range) must be 0
+// or have a magnitude in [kMinMagnitude, kMaxMagnitude]. Scene values are stored in single
+// precision: the upper bound keeps products such as areas, powers and squared distances
+// finite in float (no inf/NaN) and ray offsets, which scale with coordinates, meaningful; the
+// lower bound rejects values that would silently become 0 (or denormal) in float, while
+// accepting round-off leftovers such as 1e-17 in exported matrices.
+inline constexpr double kMinMagnitude = 1e-30;
+inline constexpr double kMaxMagnitude = 1e10;
+
 // Bounds for numbers; open or closed at each end.
 struct Range {
     double lo = -1e300, hi = 1e300;
@@ -78,7 +87,9 @@ class ObjectReader {
     void finish() const;
 
   private:
-    double checkedNumber(const Json& v, const std::string& key, Range range) const;
+    // `real`: a real-valued quantity, also held to the magnitude bound (kMinMagnitude,
+    // kMaxMagnitude); integers have only their Range.
+    double checkedNumber(const Json& v, const std::string& key, Range range, bool real) const;
 
     const Json& value_;
     std::string pointer_;

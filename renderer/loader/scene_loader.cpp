@@ -1,8 +1,12 @@
 #include "loader/scene_loader.h"
 
+#include <charconv>
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "loader/factories.h"
 #include "loader/type_table.h"
@@ -11,9 +15,63 @@ namespace rr {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Parses `text`, rejecting duplicate keys in any object (nlohmann keeps the last one silently):
+// a ConfigError at `base` + the JSON pointer of the duplicate. The parser callback sees the
+// document as a stream of events; a stack of the open containers, each with its current
+// element index (arrays) or the keys seen so far and the current key (objects), gives the
+// pointer of every key.
+Json parseRejectingDuplicateKeys(const std::string& text, const std::string& base,
+                                 bool ignoreComments) {
+    struct Container {
+        bool isArray = false;
+        size_t index = 0;            // arrays: index of the element being parsed
+        std::set<std::string> keys;  // objects: keys seen so far
+        std::string key;             // objects: the key of the value being parsed
+    };
+    std::vector<Container> containers;
+    auto pointerOfCurrent = [&] {
+        std::string pointer = base;
+        for (const Container& c : containers)
+            pointer += "/" + (c.isArray ? std::to_string(c.index) : escapePointerToken(c.key));
+        return pointer;
+    };
+    auto elementDone = [&] {
+        if (!containers.empty() && containers.back().isArray) ++containers.back().index;
+    };
+    const Json::parser_callback_t callback = [&](int, Json::parse_event_t event, Json& parsed) {
+        switch (event) {
+            case Json::parse_event_t::object_start:
+            case Json::parse_event_t::array_start:
+                containers.push_back({event == Json::parse_event_t::array_start, 0, {}, {}});
+                break;
+            case Json::parse_event_t::object_end:
+            case Json::parse_event_t::array_end:
+                containers.pop_back();
+                elementDone();
+                break;
+            case Json::parse_event_t::key: {
+                Container& object = containers.back();
+                object.key = parsed.get<std::string>();
+                if (!object.keys.insert(object.key).second)
+                    throw ConfigError(pointerOfCurrent(), "duplicate key");
+                break;
+            }
+            case Json::parse_event_t::value:
+                elementDone();
+                break;
+        }
+        return true;
+    };
+    return Json::parse(text, callback, /*allow_exceptions=*/true, ignoreComments);
+}
+
+}  // namespace
+
 Json parseSceneText(const std::string& text, const std::string& sourceName) {
     try {
-        return Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+        return parseRejectingDuplicateKeys(text, "", /*ignoreComments=*/true);
     } catch (const Json::parse_error& e) {
         // Convert nlohmann's byte offset into a line and column.
         size_t line = 1, column = 1;
@@ -46,7 +104,7 @@ void applyOverride(Json& document, const std::string& assignment) {
     const std::string valueText = assignment.substr(eq + 1);
     Json value;
     try {
-        value = Json::parse(valueText);
+        value = parseRejectingDuplicateKeys(valueText, pointerText, /*ignoreComments=*/false);
     } catch (const Json::parse_error&) {
         value = valueText;  // bare words are strings: --set /integrator/type=path
     }
@@ -59,9 +117,11 @@ void applyOverride(Json& document, const std::string& assignment) {
         Json& parent = document[pointer.parent_pointer()];
         if (parent.is_array()) {
             const std::string last = pointer.back();
-            const bool isIndex =
-                !last.empty() && last.find_first_not_of("0123456789") == std::string::npos;
-            if (!isIndex || std::stoul(last) >= parent.size())
+            size_t index = 0;
+            const char* end = last.data() + last.size();
+            const auto [stop, ec] = std::from_chars(last.data(), end, index);
+            // from_chars takes digits only (no sign, no space) and reports overflow.
+            if (last.empty() || ec != std::errc() || stop != end || index >= parent.size())
                 throw ConfigError(pointerText, "--set: not an existing array index");
         } else if (!parent.is_object()) {
             throw ConfigError(pointerText, "--set: the parent is neither an object nor an array");
@@ -75,12 +135,21 @@ void applyOverride(Json& document, const std::string& assignment) {
 
 namespace {
 
+constexpr double kMaxPixels = 67108864.0;             // 2^26
+constexpr uint64_t kMaxStructuredSamples = 16777216;  // 2^24
+
 RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
     RenderSettings r;
     if (j.has("resolution")) {
         const auto res = j.getNumbers("resolution", 2, Range::closed(1, 16384));
         if (res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]))
             j.fail("resolution", "expected two integers");
+        // The film holds several floats per pixel and the EXR a copy: 2^26 pixels (e.g.
+        // 8192 × 8192) keep both within a few GB.
+        if (res[0] * res[1] > kMaxPixels)
+            j.fail("resolution", "width × height = " + std::to_string(int64_t(res[0] * res[1])) +
+                                     " pixels exceeds the limit of 2^26 = " +
+                                     std::to_string(int64_t(kMaxPixels)));
         r.width = static_cast<int>(res[0]);
         r.height = static_cast<int>(res[1]);
     }
@@ -107,6 +176,8 @@ CameraSettings readCamera(ObjectReader& j) {
     c.verticalFovDegrees = j.getFloat("fov", 40.0f, Range::open(0, 180));
     const Vec3 forward = c.lookAt - c.position;
     if (!(length(forward) > 0)) j.fail("look_at", "must differ from the camera position");
+    if (!(length(c.up) > 0)) j.fail("up", "expected a non-zero vector");
+    c.up = normalize(c.up);  // only its direction matters: a tiny up is as good as a unit one
     if (!(length(cross(normalize(forward), c.up)) > 1e-4f))
         j.fail("up", "must not be parallel to the viewing direction");
     if (type == "thin_lens") {
@@ -196,6 +267,31 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
     builder.addShape(std::move(shape), material, emission, twoSided);
 }
 
+// The structured samplers index the spp × repeatCount draws of a decision (repeatCount: the
+// integrator's light_samples or bsdf_samples) in 32 bits; bounding the product by 2^24 keeps
+// that exact with a wide margin.
+void checkStructuredSampleCount(const RenderSettings& render, const Integrator& integrator,
+                                const std::string& sppPointer) {
+    const Json parameters = integrator.parameters();
+    uint64_t repeats = 1;
+    std::string repeatKey;
+    for (const char* key : {"light_samples", "bsdf_samples"}) {
+        const auto it = parameters.find(key);
+        if (it == parameters.end() || !it->is_number_integer()) continue;
+        const auto n = it->get<int64_t>();
+        if (n > 0 && uint64_t(n) > repeats) {
+            repeats = uint64_t(n);
+            repeatKey = key;
+        }
+    }
+    const uint64_t product = uint64_t(render.spp) * repeats;
+    if (product > kMaxStructuredSamples)
+        throw ConfigError(sppPointer,
+                          "spp (" + std::to_string(render.spp) + ") × integrator " + repeatKey +
+                              " (" + std::to_string(repeats) + ") = " + std::to_string(product) +
+                              " exceeds 2^24 = " + std::to_string(kMaxStructuredSamples));
+}
+
 }  // namespace
 
 LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
@@ -243,6 +339,7 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         ObjectReader reader(ij ? *ij : defaultIntegrator, root.pointerTo("integrator"));
         integrator = makeIntegrator(reader, path);
     }
+    checkStructuredSampleCount(render, *integrator, root.pointerTo("render") + "/spp");
     root.finish();
 
     LoadedScene loaded;

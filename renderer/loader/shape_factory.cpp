@@ -86,6 +86,12 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
     Transform t;
     if (j.has("matrix")) {
         const auto m = j.getNumbers("matrix", 16);
+        // Affine only: the bottom row (acting on column vectors) must be [0, 0, 0, 1].
+        for (int i = 12; i < 16; ++i)
+            if (m[i] != (i == 15 ? 1.0 : 0.0))
+                throw ConfigError(j.pointerTo("matrix") + "/" + std::to_string(i),
+                                  "the bottom row of the matrix must be [0, 0, 0, 1] (projective "
+                                  "transforms are not supported)");
         float f[16];
         for (int i = 0; i < 16; ++i)
             f[i] = static_cast<float>(m[i]);

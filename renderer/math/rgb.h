@@ -25,7 +25,6 @@ struct Rgb {
 
     bool isBlack() const { return r == 0 && g == 0 && b == 0; }
     float maxComponent() const { return std::max({r, g, b}); }
-    float average() const { return (r + g + b) / 3.0f; }
     // Rec. 709 luminance, as the papers' σ/µ and tvi metrics use.
     float luminance() const { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
     bool isFinite() const { return std::isfinite(r) && std::isfinite(g) && std::isfinite(b); }

@@ -67,10 +67,22 @@ Vec3 Transform::normal(const Vec3& n) const {
 }
 
 bool Transform::isInvertible() const {
-    const float det = m_[0][0] * (m_[1][1] * m_[2][2] - m_[1][2] * m_[2][1]) -
-                      m_[0][1] * (m_[1][0] * m_[2][2] - m_[1][2] * m_[2][0]) +
-                      m_[0][2] * (m_[1][0] * m_[2][1] - m_[1][1] * m_[2][0]);
-    return std::isfinite(det) && std::abs(det) > 1e-12f;
+    // In double: the products of three entries neither overflow nor underflow.
+    double a[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            a[i][j] = m_[i][j];
+    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    // Hadamard: |det| <= |r0| |r1| |r2| (rows of the 3×3 part; m_'s rows are the columns of
+    // the scene file's matrix, and the bound holds for either), with equality for orthogonal
+    // rows. A relative test accepts any unit; an absolute one would call {"scale": 0.0001}
+    // (det 1e-12) singular.
+    double hadamard = 1;
+    for (const auto& row : a)
+        hadamard *= std::sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+    return std::isfinite(det) && std::isfinite(hadamard) && std::abs(det) > 1e-6 * hadamard;
 }
 
 bool Transform::isSimilarity(float* uniformScale) const {

@@ -26,7 +26,8 @@ class Transform {
     Vec3 vector(const Vec3& v) const;
     Vec3 normal(const Vec3& n) const;  // not normalized
 
-    bool isIdentity() const { return m_ == Imath::M44f(); }
+    // The linear part is safely invertible: det finite and |det| > 1e-6 · |r0| |r1| |r2|
+    // (relative to Hadamard's bound), so a uniformly tiny or huge scale is not "singular".
     bool isInvertible() const;
     // True when the linear part is a rotation times a uniform scale; returns that scale.
     bool isSimilarity(float* uniformScale) const;

@@ -40,7 +40,6 @@ class ProgressReporter {
         callback_(p);
     }
     void setSppDone(uint32_t spp) { base_.sppDone = spp; }
-    uint64_t samplesDone() const { return done_.load(); }
 
   private:
     const ProgressCallback& callback_;

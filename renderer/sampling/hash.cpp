@@ -32,7 +32,9 @@ uint32_t permuteIndex(uint32_t i, uint32_t n, uint32_t key) {
         i &= w;
         i ^= i >> 5;
     } while (i >= n);
-    return (i + key) % n;
+    // (i + key) mod n, with key mod n computed off the dependency chain of i.
+    i += key % n;
+    return i >= n ? i - n : i;
 }
 
 }  // namespace rr

@@ -27,6 +27,19 @@ constexpr uint64_t hashKeys(uint64_t a, uint64_t b, uint64_t c, uint64_t d) {
     return hashKeys(hashKeys(a, b, c), d);
 }
 
+// One avalanche mix of a (well-mixed) base key with a small integer key: SplitMix64's
+// construction (Steele, Lea & Flood 2014), which spreads `k` with an odd Weyl constant before
+// the finaliser. Much cheaper than hashKeys() and as good when `base` is already a hash.
+constexpr uint64_t mixKey(uint64_t base, uint64_t k) {
+    return mix64(base + k * 0x9e3779b97f4a7c15ULL);
+}
+
+// The next state of PCG's 64-bit LCG: pcgOutput(state) and pcgOutput(pcgStep(state)) are two
+// consecutive outputs of a PCG generator seeded with `state`.
+constexpr uint64_t pcgStep(uint64_t state) {
+    return state * 6364136223846793005ULL + 1442695040888963407ULL;
+}
+
 // PCG's RXS-M-XS output permutation (O'Neill 2014) applied to a hashed state: the
 // "hashed PCG" generator, 32 well-mixed bits per coordinate.
 constexpr uint32_t pcgOutput(uint64_t state) {

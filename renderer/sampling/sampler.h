@@ -7,11 +7,13 @@
 // coordinate exactly uniform, so any prefix of samples is an unbiased estimate.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
 #include "math/vector.h"
 #include "sampling/decisions.h"
+#include "sampling/hash.h"
 
 namespace rr {
 
@@ -40,27 +42,38 @@ class PixelSample {
 
   private:
     friend class Sampler;
-    PixelSample(const Sampler* s, uint32_t pixel, uint32_t sample)
-        : sampler_(s), pixel_(pixel), sample_(sample) {}
+    PixelSample(const Sampler* s, uint32_t pixel, uint32_t sample, uint64_t key, uint32_t slot)
+        : sampler_(s), key_(key), pixel_(pixel), sample_(sample), slot_(slot) {}
     // Where this sample sits in its structured set for one decision site: the set's pattern
-    // key, the set size, this draw's index, and the (permuted) point of the pattern it takes.
+    // key (per pixel, set, decision and vertex), this draw's index among the set's
+    // setSize × repeatCount draws, and the (permuted) point of the pattern it takes.
     struct SetPosition {
         uint64_t key;
-        uint32_t size, index, point;
+        uint32_t index, point;
     };
-    SetPosition setPosition(const DecisionSite& site) const;
+    SetPosition setPosition(const DecisionSite& site, uint32_t repeatCount, uint32_t size) const;
 
     const Sampler* sampler_;
+    // Hash of (seed, pixel, sample) for the independent sampler, of (seed, pixel, set) for the
+    // structured ones: a draw only mixes it with its decision site.
+    uint64_t key_;
     uint32_t pixel_;
     uint32_t sample_;
+    uint32_t slot_;  // structured samplers: index of the sample within its set
 };
 
 class Sampler {
   public:
     Sampler(SamplerType type, uint32_t seed, uint32_t setSize);
 
+    // The per-pixel and per-sample (or per-set) hashing happens here, once per pixel sample.
     PixelSample at(uint32_t pixel, uint32_t sampleIndex) const {
-        return PixelSample(this, pixel, sampleIndex);
+        const uint64_t pixelKey = mixKey(seedKey_, pixel);
+        if (type_ == SamplerType::Independent)
+            return PixelSample(this, pixel, sampleIndex, mixKey(pixelKey, sampleIndex), 0);
+        const uint32_t set = sampleIndex / setSize_;
+        return PixelSample(this, pixel, sampleIndex, mixKey(pixelKey, set),
+                           sampleIndex - set * setSize_);
     }
     SamplerType type() const { return type_; }
     uint32_t seed() const { return seed_; }
@@ -68,10 +81,28 @@ class Sampler {
 
   private:
     friend class PixelSample;
+    // The structured pattern of n = setSize_ × repeatCount points, with the reciprocals and
+    // the divisor a draw needs, so that draws do not divide.
+    struct SetShape {
+        uint32_t size;           // n
+        uint32_t columns, rows;  // 2-D strata grid: columns × rows = n
+        float invSize, invColumns, invRows;
+        uint64_t columnsMagic;  // ⌊(2^64 − 1) / columns⌋ + 1 (0 when columns = 1)
+    };
+    static SetShape makeShape(uint32_t n);
+    SetShape shape(uint32_t repeatCount) const {
+        return repeatCount <= kCachedRepeatCounts ? shapes_[repeatCount - 1]
+                                                  : makeShape(setSize_ * repeatCount);
+    }
+
+    // Repeat counts up to this have their set shape precomputed.
+    static constexpr uint32_t kCachedRepeatCounts = 64;
+
     SamplerType type_;
     uint32_t seed_;
     uint32_t setSize_;
-    uint32_t gridColumns_;  // 2-D strata: gridColumns_ × (setSize_ / gridColumns_)
+    uint64_t seedKey_;
+    std::array<SetShape, kCachedRepeatCounts> shapes_;  // [r − 1]: setSize_ × r points
 };
 
 }  // namespace rr

@@ -10,11 +10,12 @@
 namespace rr {
 
 struct LightSample {
-    Vec3 direction;  // unit, from the reference point towards the light
-    Vec3 position;   // sampled point on the light (shadow-ray target)
-    Vec3 normal;     // light surface normal there (zero for point lights)
-    Rgb radiance;    // arriving radiance (for delta lights: intensity / distance²)
-    float pdf = 0;   // solid angle; 1 for delta lights
+    Vec3 direction;        // unit, from the reference point towards the light
+    Vec3 position;         // sampled point on the light (shadow-ray target)
+    Vec3 normal;           // light surface normal there (zero for point lights)
+    float errorScale = 0;  // of `position`, for lifting the shadow ray's end off the light
+    Rgb radiance;          // arriving radiance (for delta lights: intensity / distance²)
+    float pdf = 0;         // solid angle; 1 for delta lights
     bool isDelta = false;
 };
 

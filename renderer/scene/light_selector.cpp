@@ -25,10 +25,6 @@ class TableLightSelector final : public LightSelector {
 
 }  // namespace
 
-const char* lightSelectionName(LightSelection s) {
-    return s == LightSelection::Uniform ? "uniform" : "power";
-}
-
 std::unique_ptr<LightSelector> makeLightSelector(LightSelection kind,
                                                  std::span<const Light* const> lights) {
     std::vector<float> weights(lights.size(), 1.0f);

@@ -22,7 +22,6 @@ class LightSelector {
 };
 
 enum class LightSelection : uint8_t { Uniform, Power };
-const char* lightSelectionName(LightSelection s);
 
 std::unique_ptr<LightSelector> makeLightSelector(LightSelection kind,
                                                  std::span<const Light* const> lights);

@@ -34,6 +34,7 @@ struct BsdfSample {
     Vec3 wi;        // local frame
     Rgb weight;     // f·|cos θi| / pdf (for specular lobes: the lobe's value / its probability)
     float pdf = 0;  // solid angle; for specular lobes the discrete probability of the lobe
+    float eta = 1;  // ηt/ηi across the interface for transmission, 1 otherwise
     uint8_t lobe = 0;
     bool isSpecular() const { return (lobe & kSpecular) != 0; }
 };

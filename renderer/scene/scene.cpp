@@ -40,7 +40,16 @@ Scene::~Scene() {
     if (device_) rtcReleaseDevice(device_);
 }
 
+namespace {
+// Debian's Embree asserts (and aborts the process) on non-finite rays. None should arise from
+// validated input, but a degenerate one (a zero-length shadow segment) must not kill a render.
+bool isValid(const Ray& ray) {
+    return isFinite(ray.origin) && isFinite(ray.direction);
+}
+}  // namespace
+
 bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
+    if (!isValid(ray)) return false;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -59,6 +68,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit* hit) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
+    if (!isValid(ray)) return true;  // a degenerate connection carries no light
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r = toEmbree(ray);

@@ -41,7 +41,6 @@ class Scene {
     std::span<const Light* const> lights() const { return lights_; }
     const LightSelector& lightSelector() const { return *lightSelector_; }
     const SceneFeatures& features() const { return features_; }
-    size_t shapeCount() const { return shapes_.size(); }
 
   private:
     friend class SceneBuilder;

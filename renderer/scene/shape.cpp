@@ -14,12 +14,10 @@ float areaToSolidAngle(float areaPdf, const Vec3& reference, const Vec3& positio
 }
 
 bool Shape::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
-    Vec3 p, n;
-    sampleArea(u, &p, &n);
-    p += offsetAt(time);
-    out->position = p;
-    out->normal = n;
-    out->pdf = areaToSolidAngle(1.0f / area(), reference, p, n);
+    *out = sampleArea(u);
+    out->position += offsetAt(time);
+    out->errorScale += motionScale();
+    out->pdf = areaToSolidAngle(1.0f / area(), reference, out->position, out->normal);
     return out->pdf > 0 && std::isfinite(out->pdf);
 }
 

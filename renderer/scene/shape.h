@@ -19,6 +19,7 @@ struct ShapeSample {
     Vec3 position;
     Vec3 normal;
     float pdf = 0;
+    float errorScale = 0;  // as SurfaceHit::errorScale
 };
 
 class Shape {
@@ -31,8 +32,9 @@ class Shape {
     virtual void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const = 0;
 
     virtual float area() const = 0;
-    // Uniform sample by area at time 0 (position, normal); density 1/area.
-    virtual void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const = 0;
+    // Uniform sample by area at time 0: position, normal and error scale (pdf left unset;
+    // the density is 1/area).
+    virtual ShapeSample sampleArea(Vec2 u) const = 0;
 
     // Samples a point visible-side-agnostically with a solid-angle density from `reference`.
     // The default converts uniform area sampling; shapes with better strategies override both
@@ -44,7 +46,8 @@ class Shape {
     void setMotion(const Vec3& translation) { motion_ = translation; }
     bool hasMotion() const { return !(motion_ == Vec3(0.0f)); }
     Vec3 offsetAt(float time) const { return motion_ * time; }
-    const Vec3& motion() const { return motion_; }
+    // Magnitude of the motion's contribution to positions, for error scales.
+    float motionScale() const { return maxAbsComponent(motion_); }
 
     void setMaterial(const Material* m) { material_ = m; }
     const Material* material() const { return material_; }

@@ -16,21 +16,25 @@ struct SurfaceHit {
     Vec2 uv;
     float distance = 0;
     float time = 0;
+    float errorScale = 0;  // magnitude of the coordinates `position` was computed from
     const Shape* shape = nullptr;
 
     Frame shadingFrame() const { return Frame(shadingNormal); }
 
     // A ray leaving this surface in direction `dir` (unit).
     Ray spawn(const Vec3& dir) const {
-        return Ray{offsetRayOrigin(position, geometricNormal, dir), dir,
+        return Ray{offsetRayOrigin(position, geometricNormal, dir, errorScale), dir,
                    std::numeric_limits<float>::infinity(), time};
     }
-    // A shadow ray towards `target`, stopping just short of it.
-    Ray spawnTo(const Vec3& target) const {
-        const Vec3 o = offsetRayOrigin(position, geometricNormal, target - position);
-        const Vec3 d = target - o;
+    // A shadow ray to a point on a light (normal and error scale of that point; a zero normal
+    // for point lights). Both ends are lifted off their surfaces, so the ray neither re-hits
+    // this surface nor the light's, and sees occluders however close to either end.
+    Ray spawnTo(const Vec3& target, const Vec3& targetNormal, float targetErrorScale) const {
+        const Vec3 from = offsetRayOrigin(position, geometricNormal, target - position, errorScale);
+        const Vec3 to = offsetRayOrigin(target, targetNormal, position - target, targetErrorScale);
+        const Vec3 d = to - from;
         const float dist = length(d);
-        return Ray{o, d / dist, dist * (1.0f - 1e-4f), time};
+        return Ray{from, d / dist, dist, time};
     }
 };
 

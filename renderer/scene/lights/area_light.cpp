@@ -13,6 +13,7 @@ bool AreaLight::sample(const Vec3& reference, Vec2 u, float time, LightSample* o
     out->direction = d / dist;
     out->position = s.position;
     out->normal = s.normal;
+    out->errorScale = s.errorScale;
     out->radiance = emitted(s.normal, -out->direction);
     out->pdf = s.pdf;
     out->isDelta = false;

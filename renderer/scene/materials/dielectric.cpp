@@ -36,6 +36,7 @@ bool Dielectric::sample(const ShadingContext&, const Vec3& wo, float uLobe, Vec2
     if (uLobe < f) {
         out->wi = Vec3(-wo.x, -wo.y, wo.z);
         out->pdf = f;
+        out->eta = 1;
         out->weight = reflectance_;  // (F·R) / F
         out->lobe = kReflection | kSpecular;
         return true;
@@ -43,6 +44,7 @@ bool Dielectric::sample(const ShadingContext&, const Vec3& wo, float uLobe, Vec2
     float eta;
     if (!refract(wo, &out->wi, &eta)) return false;  // unreachable: F = 1 under TIR
     out->pdf = 1.0f - f;
+    out->eta = eta;
     out->weight = transmittance_ * (1.0f / (eta * eta));  // ((1−F)·T/η²) / (1−F)
     out->lobe = kTransmission | kSpecular;
     return true;

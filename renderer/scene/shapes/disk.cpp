@@ -89,6 +89,7 @@ void Disk::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     const Vec3 c = centerAt(ray.time);
     const Vec3 local = frame_.toLocal(ray.origin + ray.direction * out->distance - c);
     out->position = c + frame_.toWorld(Vec3(local.x, local.y, 0));  // projected onto the plane
+    out->errorScale = maxAbsComponent(center_) + motionScale() + radius_;
     out->geometricNormal = frame_.n;
     out->shadingNormal = frame_.n;
     const float phi = std::atan2(local.y, local.x);
@@ -96,10 +97,13 @@ void Disk::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
                    (phi < 0 ? phi + kTwoPi : phi) / kTwoPi);
 }
 
-void Disk::sampleArea(Vec2 u, Vec3* position, Vec3* normal) const {
+ShapeSample Disk::sampleArea(Vec2 u) const {
     const Vec2 d = squareToUniformDisk(u);
-    *position = center_ + frame_.toWorld(Vec3(d.x * radius_, d.y * radius_, 0));
-    *normal = frame_.n;
+    ShapeSample s;
+    s.position = center_ + frame_.toWorld(Vec3(d.x * radius_, d.y * radius_, 0));
+    s.normal = frame_.n;
+    s.errorScale = maxAbsComponent(center_) + radius_;
+    return s;
 }
 
 }  // namespace rr

@@ -13,7 +13,7 @@ class Disk final : public Shape {
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return kPi * radius_ * radius_; }
-    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+    ShapeSample sampleArea(Vec2 u) const override;
 
     // Ray parameter of the hit with the disk displaced by `offset`, if within (tMin, tMax).
     bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& offset, float tMin,

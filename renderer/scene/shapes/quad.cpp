@@ -10,6 +10,7 @@ Quad::Quad(const Vec3& corner, const Vec3& edgeU, const Vec3& edgeV)
     // Dual basis within the plane: dualU ⟂ edgeV, dot(dualU, edgeU) = 1 (and symmetrically).
     dualU_ = cross(edgeV, normal_) / dot(cross(edgeV, normal_), edgeU);
     dualV_ = cross(normal_, edgeU) / dot(cross(normal_, edgeU), edgeV);
+    errorScale_ = maxAbsComponent(corner) + maxAbsComponent(edgeU) + maxAbsComponent(edgeV);
 }
 
 RTCGeometry Quad::createGeometry(RTCDevice device) const {
@@ -26,17 +27,23 @@ RTCGeometry Quad::createGeometry(RTCDevice device) const {
 }
 
 void Quad::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
-    const Vec3 p = ray.origin + ray.direction * out->distance;
-    const Vec3 local = p - corner_ - offsetAt(ray.time);
-    out->position = p;
+    // The hit is recomputed from its (s, t): its error is then relative to the quad's own
+    // coordinates, not to the ray origin's distance.
+    const Vec3 corner = corner_ + offsetAt(ray.time);
+    const Vec3 local = ray.origin + ray.direction * out->distance - corner;
+    out->uv = Vec2(clamp(dot(local, dualU_), 0, 1), clamp(dot(local, dualV_), 0, 1));
+    out->position = corner + edgeU_ * out->uv.x + edgeV_ * out->uv.y;
+    out->errorScale = errorScale_ + motionScale();
     out->geometricNormal = normal_;
     out->shadingNormal = normal_;
-    out->uv = Vec2(clamp(dot(local, dualU_), 0, 1), clamp(dot(local, dualV_), 0, 1));
 }
 
-void Quad::sampleArea(Vec2 u, Vec3* position, Vec3* normal) const {
-    *position = corner_ + edgeU_ * u.x + edgeV_ * u.y;
-    *normal = normal_;
+ShapeSample Quad::sampleArea(Vec2 u) const {
+    ShapeSample s;
+    s.position = corner_ + edgeU_ * u.x + edgeV_ * u.y;
+    s.normal = normal_;
+    s.errorScale = errorScale_;
+    return s;
 }
 
 }  // namespace rr

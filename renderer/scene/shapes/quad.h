@@ -13,12 +13,13 @@ class Quad final : public Shape {
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return area_; }
-    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+    ShapeSample sampleArea(Vec2 u) const override;
 
   private:
     Vec3 corner_, edgeU_, edgeV_, normal_;
     Vec3 dualU_, dualV_;  // dot(p − corner, dualU_) = s
     float area_;
+    float errorScale_;  // of corner + s·edgeU + t·edgeV
 };
 
 }  // namespace rr

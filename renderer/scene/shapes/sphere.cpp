@@ -105,15 +105,19 @@ void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     const Vec3 c = centerAt(ray.time);
     const Vec3 n = normalize(ray.origin + ray.direction * out->distance - c);
     out->position = c + n * radius_;  // reprojected onto the surface: exact up to rounding
+    out->errorScale = errorScale();
     out->geometricNormal = n;
     out->shadingNormal = n;
     const float phi = std::atan2(n.y, n.x);
     out->uv = Vec2((phi < 0 ? phi + kTwoPi : phi) / kTwoPi, safeAcos(n.z) * kInvPi);
 }
 
-void Sphere::sampleArea(Vec2 u, Vec3* position, Vec3* normal) const {
-    *normal = squareToUniformSphere(u);
-    *position = center_ + *normal * radius_;
+ShapeSample Sphere::sampleArea(Vec2 u) const {
+    ShapeSample s;
+    s.normal = squareToUniformSphere(u);
+    s.position = center_ + s.normal * radius_;
+    s.errorScale = maxAbsComponent(center_) + radius_;
+    return s;
 }
 
 bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
@@ -142,6 +146,7 @@ bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSam
     out->position = c + n * radius_;
     out->normal = n;
     out->pdf = uniformConePdf(oneMinusCosMax);
+    out->errorScale = errorScale();
     return true;
 }
 

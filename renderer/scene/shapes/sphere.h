@@ -14,13 +14,15 @@ class Sphere final : public Shape {
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return 4.0f * kPi * radius_ * radius_; }
-    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+    ShapeSample sampleArea(Vec2 u) const override;
     bool sampleDirection(const Vec3& reference, Vec2 u, float time,
                          ShapeSample* out) const override;
     float directionPdf(const Vec3& reference, const SurfaceHit& hit) const override;
 
     Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
     float radius() const { return radius_; }
+    // Surface points are computed as centre + radius · normal.
+    float errorScale() const { return maxAbsComponent(center_) + motionScale() + radius_; }
 
     // Nearest t in (tMin, tMax) where the ray meets the sphere centred at `center`; the
     // quadratic is solved in double precision with the numerically stable root form.

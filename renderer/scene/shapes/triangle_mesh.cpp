@@ -1,5 +1,6 @@
 #include "scene/shapes/triangle_mesh.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "sampling/warps.h"
@@ -45,38 +46,46 @@ RTCGeometry TriangleMesh::createGeometry(RTCDevice device) const {
     return g;
 }
 
-Vec3 TriangleMesh::faceNormal(uint32_t triangle) const {
-    const Vec3& a = data_.positions[data_.indices[3 * triangle]];
-    const Vec3& b = data_.positions[data_.indices[3 * triangle + 1]];
-    const Vec3& c = data_.positions[data_.indices[3 * triangle + 2]];
-    return normalize(cross(b - a, c - a));
+TriangleMesh::Triangle TriangleMesh::triangle(uint32_t index) const {
+    const uint32_t* i = &data_.indices[3 * size_t(index)];
+    return {data_.positions[i[0]], data_.positions[i[1]], data_.positions[i[2]]};
+}
+
+float TriangleMesh::Triangle::errorScale() const {
+    return std::max({maxAbsComponent(p0), maxAbsComponent(p1), maxAbsComponent(p2)});
 }
 
 void TriangleMesh::completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const {
-    out->position = ray.origin + ray.direction * out->distance;
-    out->geometricNormal = faceNormal(hit.primID);
+    // The hit point is interpolated from the vertices with Embree's barycentrics, so its error
+    // is relative to the triangle's coordinates, not to the ray origin's distance.
+    const Triangle tri = triangle(hit.primID);
+    const float b0 = 1 - hit.u - hit.v;
+    out->position = tri.p0 * b0 + tri.p1 * hit.u + tri.p2 * hit.v + offsetAt(ray.time);
+    out->errorScale = tri.errorScale() + motionScale();
+    out->geometricNormal = tri.normal();
     out->uv = Vec2(hit.u, hit.v);
     if (data_.normals.empty()) {
         out->shadingNormal = out->geometricNormal;
         return;
     }
-    const uint32_t* idx = &data_.indices[3 * hit.primID];
-    Vec3 n = data_.normals[idx[0]] * (1 - hit.u - hit.v) + data_.normals[idx[1]] * hit.u +
-             data_.normals[idx[2]] * hit.v;
+    const uint32_t* idx = &data_.indices[3 * size_t(hit.primID)];
+    Vec3 n =
+        data_.normals[idx[0]] * b0 + data_.normals[idx[1]] * hit.u + data_.normals[idx[2]] * hit.v;
     const float len = length(n);
     n = len > 0 ? n / len : out->geometricNormal;
     out->shadingNormal = dot(n, out->geometricNormal) < 0 ? -n : n;
 }
 
-void TriangleMesh::sampleArea(Vec2 u, Vec3* position, Vec3* normal) const {
+ShapeSample TriangleMesh::sampleArea(Vec2 u) const {
     float uRemapped;
-    const int tri = triangleByArea_.sample(u.x, nullptr, &uRemapped);
+    const int index = triangleByArea_.sample(u.x, nullptr, &uRemapped);
     const Vec2 b = squareToUniformTriangle(Vec2(uRemapped, u.y));
-    const Vec3& p0 = data_.positions[data_.indices[3 * tri]];
-    const Vec3& p1 = data_.positions[data_.indices[3 * tri + 1]];
-    const Vec3& p2 = data_.positions[data_.indices[3 * tri + 2]];
-    *position = p0 * b.x + p1 * b.y + p2 * (1 - b.x - b.y);
-    *normal = faceNormal(static_cast<uint32_t>(tri));
+    const Triangle tri = triangle(static_cast<uint32_t>(index));
+    ShapeSample s;
+    s.position = tri.p0 * b.x + tri.p1 * b.y + tri.p2 * (1 - b.x - b.y);
+    s.normal = tri.normal();
+    s.errorScale = tri.errorScale();
+    return s;
 }
 
 }  // namespace rr

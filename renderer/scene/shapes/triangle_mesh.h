@@ -23,14 +23,19 @@ class TriangleMesh final : public Shape {
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return area_; }
-    void sampleArea(Vec2 u, Vec3* position, Vec3* normal) const override;
+    ShapeSample sampleArea(Vec2 u) const override;
 
     size_t triangleCount() const { return data_.indices.size() / 3; }
     // Averages face normals (area-weighted) into per-vertex shading normals.
     static std::vector<Vec3> smoothNormals(const MeshData& data);
 
   private:
-    Vec3 faceNormal(uint32_t triangle) const;
+    struct Triangle {
+        Vec3 p0, p1, p2;
+        Vec3 normal() const { return normalize(cross(p1 - p0, p2 - p0)); }  // right-hand rule
+        float errorScale() const;
+    };
+    Triangle triangle(uint32_t index) const;
 
     MeshData data_;
     float area_ = 0;
