@@ -1,6 +1,13 @@
 // Light interface. Next-event estimation asks a light for a direction towards it with a
 // solid-angle density; MIS asks for the density of a direction found by BSDF sampling.
-// Spot, polygon and environment lights implement the same interface.
+// How the papers' other lights fit:
+//  - spot: a delta light like PointLight, its intensity shaped by the cone and falloff;
+//  - convex polygon: an AreaLight on a polygon Shape (a triangle fan sampled by area), no
+//    change here;
+//  - environment map: an infinite light. sample() returns a direction with the map's
+//    solid-angle pdf and `position` far outside the scene's bounds (the shadow ray then runs
+//    to infinity); BSDF-sampled rays that escape the scene are where MIS meets it, so it adds
+//    radiance and pdf by direction for rays that hit no surface.
 #pragma once
 
 #include "math/rgb.h"
