@@ -208,13 +208,6 @@ TEST_P(AnalyticScenes, GlassSphereInUniformEmitterConservesRadianceWithZeroVaria
         }
 }
 
-// A number for a JSON scene, to 9 significant digits (std::to_string keeps only 6 decimals).
-std::string num(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
-
 // Expected pixel values by quadrature over the pixel footprint, for a camera looking at the
 // floor y = 0 (every pixel must see it): `radiance(p)` is the closed-form value at floor point p.
 Film floorQuadrature(const Camera& camera, const std::function<double(const Vec3&)>& radiance) {
@@ -270,6 +263,31 @@ double rectangleFormFactor(double px, double pz, double x0, double x1, double z0
            corner(x0 - px, z0 - pz);
 }
 
+// Scenes of a diffuse floor (y = 0) under square quads, built as JSON objects.
+Json square(double halfSize, double y, bool facingUp) {
+    const double z = facingUp ? halfSize : -halfSize;  // edge_u × edge_v = ±y
+    return {{"type", "quad"},
+            {"corner", {-halfSize, y, z}},
+            {"edge_u", {2 * halfSize, 0, 0}},
+            {"edge_v", {0, 0, -2 * z}}};
+}
+
+Json floorScene(const std::string& integrator, double floorHalfSize, double albedo,
+                const Json& camera) {
+    Json floor = square(floorHalfSize, 0, /*facingUp=*/true);
+    floor["material"] = {{"type", "lambert"}, {"albedo", albedo}};
+    return {{"render", {{"resolution", {16, 16}}, {"max_depth", 1}}},
+            {"integrator", {{"type", integrator}}},
+            {"camera", camera},
+            {"shapes", {floor}}};
+}
+
+// A camera at `height` looking obliquely down at the floor towards x = `lookX` (the 30° view
+// sees floor only).
+Json obliqueCamera(double height, double lookX) {
+    return {{"position", {0, height, 0}}, {"look_at", {lookX, 0, 0}}, {"fov", 30}};
+}
+
 // A square light close over a diffuse floor (height 1/20 of its size, so shadow rays are short
 // and end on a surface a hair away), at scene scales from 0.1 mm to km: the result is the
 // closed-form form factor, whatever the unit. The camera, under the light, looks obliquely
@@ -279,26 +297,16 @@ class LightOverFloor : public ::testing::TestWithParam<std::tuple<std::string, d
 TEST_P(LightOverFloor, SquareLightCloseOverAFloorMatchesTheFormFactor) {
     const auto [integrator, scale] = GetParam();
     const double a = 1.0 * scale, h = 0.1 * scale, albedo = 0.5, radiance = 2.0;
-    const LoadedScene scene = loadSceneText(
-        R"({"render": {"resolution": [16, 16], "max_depth": 1},
-            "integrator": {"type": ")" +
-        integrator + R"("},
-            "camera": {"position": [0, )" +
-        num(0.09 * scale) + R"(, 0], "look_at": [)" + num(0.3 * scale) + R"(, 0, 0], "fov": 30},
-            "shapes": [
-              {"type": "quad", "corner": [)" +
-        num(-4 * a) + ", 0, " + num(4 * a) + R"(], "edge_u": [)" + num(8 * a) +
-        R"(, 0, 0], "edge_v": [0, 0, )" + num(-8 * a) +
-        R"(], "material": {"type": "lambert", "albedo": )" + num(albedo) + R"(}},
-              {"type": "quad", "corner": [)" +
-        num(-a) + ", " + num(h) + ", " + num(-a) + R"(], "edge_u": [)" + num(2 * a) +
-        R"(, 0, 0], "edge_v": [0, 0, )" + num(2 * a) + R"(], "emission": {"radiance": )" +
-        num(radiance) + "}}]}");
+    Json doc = floorScene(integrator, 4 * a, albedo, obliqueCamera(0.09 * scale, 0.3 * scale));
+    Json light = square(a, h, /*facingUp=*/false);
+    light["emission"] = {{"radiance", radiance}};
+    doc["shapes"].push_back(light);
+    const LoadedScene scene = loadSceneJson(doc);
     const TestRender r = renderScene(scene, 256);
     const Film expected = floorQuadrature(scene.scene->camera(), [&](const Vec3& p) {
         return albedo * radiance * rectangleFormFactor(p.x, p.z, -a, a, -a, a, h);
     });
-    expectMatchesQuadrature(r.film, expected, integrator + " at scale " + num(scale));
+    expectMatchesQuadrature(r.film, expected, integrator + " at scale " + std::to_string(scale));
 }
 
 // A distant light (1000 units up, 100 wide) with a black plate twice its width 0.05 under it:
@@ -307,30 +315,17 @@ TEST_P(LightOverFloor, SquareLightCloseOverAFloorMatchesTheFormFactor) {
 // of the light, e.g. 1e-4 of their length, miss the plate and leak light.)
 TEST_P(LightOverFloor, OccluderJustUnderADistantLightBlocksEveryShadowRay) {
     const auto [integrator, scale] = GetParam();
-    auto square = [&](double halfSize, double y) {
-        return R"({"type": "quad", "corner": [)" + num(-halfSize) + ", " + num(y) + ", " +
-               num(-halfSize) + R"(], "edge_u": [)" + num(2 * halfSize) +
-               R"(, 0, 0], "edge_v": [0, 0, )" + num(2 * halfSize) + "], ";
-    };
     const double a = 50 * scale, height = 1000 * scale, gap = 0.05 * scale;
-    const LoadedScene scene = loadSceneText(
-        R"({"render": {"resolution": [8, 8], "max_depth": 1},
-            "integrator": {"type": ")" +
-        integrator + R"("},
-            "camera": {"position": [0, )" +
-        num(2 * scale) + R"(, 0], "look_at": [)" + num(6 * scale) + R"(, 0, 0], "fov": 30},
-            "shapes": [
-              {"type": "quad", "corner": [)" +
-        num(-200 * scale) + ", 0, " + num(200 * scale) + R"(], "edge_u": [)" + num(400 * scale) +
-        R"(, 0, 0], "edge_v": [0, 0, )" + num(-400 * scale) +
-        R"(], "material": {"type": "lambert", "albedo": 0.5}},
-              )" +
-        square(a, height) + R"("emission": {"radiance": 2}},
-              )" +
-        square(2 * a, height - gap) + R"("material": {"type": "lambert", "albedo": 0}}]})");
-    const TestRender r = renderScene(scene, 64);
-    for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x)
+    Json doc = floorScene(integrator, 200 * scale, 0.5, obliqueCamera(2 * scale, 6 * scale));
+    Json light = square(a, height, /*facingUp=*/false);
+    light["emission"] = {{"radiance", 2}};
+    Json plate = square(2 * a, height - gap, /*facingUp=*/false);
+    plate["material"] = {{"type", "lambert"}, {"albedo", 0}};
+    doc["shapes"].push_back(light);
+    doc["shapes"].push_back(plate);
+    const TestRender r = renderScene(loadSceneJson(doc), 64);
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x)
             ASSERT_EQ(r.film.mean(x, y), Rgb(0.0f)) << x << "," << y;
 }
 

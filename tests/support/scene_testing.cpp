@@ -5,7 +5,11 @@
 namespace rr::test {
 
 LoadedScene loadSceneText(const std::string& json) {
-    return loadScene(parseSceneText(json, "test scene"), AssetResolver::standard(TEST_SCENES_DIR));
+    return loadSceneJson(parseSceneText(json, "test scene"));
+}
+
+LoadedScene loadSceneJson(const Json& document) {
+    return loadScene(document, AssetResolver::standard(TEST_SCENES_DIR));
 }
 
 LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string>& overrides) {

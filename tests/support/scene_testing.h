@@ -11,6 +11,7 @@
 namespace rr::test {
 
 LoadedScene loadSceneText(const std::string& json);
+LoadedScene loadSceneJson(const Json& document);
 // A scene from configs/scenes by file name, with `--set`-style overrides applied.
 LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string>& overrides = {});
 
