@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "app/render_command.h"
+#include "render/renderer.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"Research renderer for Monte Carlo importance-sampling reproductions"};
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
     render->add_option("scene", o.scene, "scene JSON file")->required();
     render->add_option("--integrator", o.integrator, "integrator type (path, path_mis, direct)");
     render->add_option("--spp", o.spp, "samples per pixel (an upper bound with --time-limit)")
-        ->check(CLI::Range(1u, 1u << 24));
+        ->check(CLI::Range(1u, rr::kMaxSpp));
     render->add_option("--time-limit", o.timeLimit, "render in passes until SECONDS have passed")
         ->check(CLI::PositiveNumber);
     render->add_option("--seed", o.seed, "random seed");

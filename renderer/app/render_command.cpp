@@ -189,8 +189,6 @@ int runRenderCommand(const RenderCommandOptions& o) {
 
     const RenderSettings& settings = p.loaded.render;
     RenderOptions options;
-    // A time-limited render stops at 2^24 spp at most: the sample-count channel is a float.
-    constexpr uint32_t kMaxSpp = 1u << 24;
     options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
     options.timeLimit = o.timeLimit;
     options.seed = settings.seed;

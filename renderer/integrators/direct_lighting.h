@@ -4,6 +4,8 @@
 // draws per pixel sample are stratified together by structured samplers.
 #pragma once
 
+#include <algorithm>
+
 #include "integrators/integrator.h"
 
 namespace rr {
@@ -24,6 +26,9 @@ class DirectLighting final : public Integrator {
     nlohmann::json parameters() const override;
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;
+    uint32_t decisionRepeats() const override {
+        return static_cast<uint32_t>(std::max(settings_.lightSamples, settings_.bsdfSamples));
+    }
 
   private:
     bool usesLights() const { return settings_.strategy != DirectStrategy::Bsdf; }

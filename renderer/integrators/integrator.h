@@ -37,6 +37,8 @@ class Integrator {
     virtual nlohmann::json parameters() const = 0;
     virtual Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                          RayCounters& rays) const = 0;
+    // The most draws of one decision a pixel sample makes (DecisionSite::repeatCount).
+    virtual uint32_t decisionRepeats() const { return 1; }
 };
 
 // The camera ray for pixel (x, y): film position, lens and shutter decisions are drawn only

@@ -10,6 +10,7 @@
 
 #include "loader/factories.h"
 #include "loader/type_table.h"
+#include "render/renderer.h"
 
 namespace rr {
 
@@ -135,8 +136,7 @@ void applyOverride(Json& document, const std::string& assignment) {
 
 namespace {
 
-constexpr double kMaxPixels = 67108864.0;             // 2^26
-constexpr uint64_t kMaxStructuredSamples = 16777216;  // 2^24
+constexpr double kMaxPixels = 67108864.0;  // 2^26
 
 RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
     RenderSettings r;
@@ -153,7 +153,7 @@ RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
         r.width = static_cast<int>(res[0]);
         r.height = static_cast<int>(res[1]);
     }
-    r.spp = static_cast<uint32_t>(j.getInt("spp", 16, Range::closed(1, 1 << 24)));
+    r.spp = static_cast<uint32_t>(j.getInt("spp", 16, Range::closed(1, kMaxSpp)));
     r.seed = static_cast<uint32_t>(j.getInt("seed", 0, Range::closed(0, 4294967295.0)));
     const std::string sampler =
         j.getChoice("sampler", {"independent", "stratified", "hammersley"}, "independent");
@@ -267,29 +267,18 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
     builder.addShape(std::move(shape), material, emission, twoSided);
 }
 
-// The structured samplers index the spp × repeatCount draws of a decision (repeatCount: the
-// integrator's light_samples or bsdf_samples) in 32 bits; bounding the product by 2^24 keeps
-// that exact with a wide margin.
+// The structured samplers index a pixel's spp × repeats draws of one decision in 32 bits, and
+// the float sample count is exact to kMaxSpp: the product is bounded by it too.
 void checkStructuredSampleCount(const RenderSettings& render, const Integrator& integrator,
                                 const std::string& sppPointer) {
-    const Json parameters = integrator.parameters();
-    uint64_t repeats = 1;
-    std::string repeatKey;
-    for (const char* key : {"light_samples", "bsdf_samples"}) {
-        const auto it = parameters.find(key);
-        if (it == parameters.end() || !it->is_number_integer()) continue;
-        const auto n = it->get<int64_t>();
-        if (n > 0 && uint64_t(n) > repeats) {
-            repeats = uint64_t(n);
-            repeatKey = key;
-        }
-    }
+    const uint64_t repeats = integrator.decisionRepeats();
     const uint64_t product = uint64_t(render.spp) * repeats;
-    if (product > kMaxStructuredSamples)
-        throw ConfigError(sppPointer,
-                          "spp (" + std::to_string(render.spp) + ") × integrator " + repeatKey +
-                              " (" + std::to_string(repeats) + ") = " + std::to_string(product) +
-                              " exceeds 2^24 = " + std::to_string(kMaxStructuredSamples));
+    if (product > kMaxSpp)
+        throw ConfigError(
+            sppPointer,
+            "spp (" + std::to_string(render.spp) + ") × the " + std::to_string(repeats) +
+                " draws per sample of the integrator's decisions = " + std::to_string(product) +
+                " exceeds 2^24 = " + std::to_string(kMaxSpp));
 }
 
 }  // namespace

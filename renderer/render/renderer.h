@@ -14,6 +14,10 @@
 
 namespace rr {
 
+// Largest number of samples per pixel: the sample-count channel is a float (exact to 2^24),
+// and structured samplers index a pixel's spp × repeats draws of a decision in 32 bits.
+inline constexpr uint32_t kMaxSpp = 1u << 24;
+
 struct RenderOptions {
     uint32_t spp = 16;     // target; with a time limit, an upper bound (0: none)
     double timeLimit = 0;  // seconds; 0: render exactly spp

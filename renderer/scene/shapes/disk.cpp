@@ -59,7 +59,10 @@ void diskOccluded(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 Disk::Disk(const Vec3& center, const Vec3& normal, float radius)
-    : center_(center), frame_(normalize(normal)), radius_(radius) {}
+    : center_(center),
+      frame_(normalize(normal)),
+      radius_(radius),
+      errorScale_(maxAbsComponent(center) + radius) {}
 
 bool Disk::intersect(const Vec3& origin, const Vec3& direction, const Vec3& offset, float tMin,
                      float tMax, float* t) const {
@@ -89,7 +92,7 @@ void Disk::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     const Vec3 c = centerAt(ray.time);
     const Vec3 local = frame_.toLocal(ray.origin + ray.direction * out->distance - c);
     out->position = c + frame_.toWorld(Vec3(local.x, local.y, 0));  // projected onto the plane
-    out->errorScale = maxAbsComponent(center_) + motionScale() + radius_;
+    out->errorScale = errorScale_ + motionScale();
     out->geometricNormal = frame_.n;
     out->shadingNormal = frame_.n;
     const float phi = std::atan2(local.y, local.x);
@@ -102,7 +105,7 @@ ShapeSample Disk::sampleArea(Vec2 u) const {
     ShapeSample s;
     s.position = center_ + frame_.toWorld(Vec3(d.x * radius_, d.y * radius_, 0));
     s.normal = frame_.n;
-    s.errorScale = maxAbsComponent(center_) + radius_;
+    s.errorScale = errorScale_;
     return s;
 }
 

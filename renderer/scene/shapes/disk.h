@@ -26,6 +26,7 @@ class Disk final : public Shape {
     Vec3 center_;
     Frame frame_;
     float radius_;
+    float errorScale_;  // of centre + in-plane offset
 };
 
 }  // namespace rr

@@ -105,7 +105,7 @@ void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     const Vec3 c = centerAt(ray.time);
     const Vec3 n = normalize(ray.origin + ray.direction * out->distance - c);
     out->position = c + n * radius_;  // reprojected onto the surface: exact up to rounding
-    out->errorScale = errorScale();
+    out->errorScale = errorScale_ + motionScale();
     out->geometricNormal = n;
     out->shadingNormal = n;
     const float phi = std::atan2(n.y, n.x);
@@ -116,7 +116,7 @@ ShapeSample Sphere::sampleArea(Vec2 u) const {
     ShapeSample s;
     s.normal = squareToUniformSphere(u);
     s.position = center_ + s.normal * radius_;
-    s.errorScale = maxAbsComponent(center_) + radius_;
+    s.errorScale = errorScale_;
     return s;
 }
 
@@ -146,7 +146,7 @@ bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSam
     out->position = c + n * radius_;
     out->normal = n;
     out->pdf = uniformConePdf(oneMinusCosMax);
-    out->errorScale = errorScale();
+    out->errorScale = errorScale_ + motionScale();
     return true;
 }
 

@@ -9,7 +9,8 @@ namespace rr {
 
 class Sphere final : public Shape {
   public:
-    Sphere(const Vec3& center, float radius) : center_(center), radius_(radius) {}
+    Sphere(const Vec3& center, float radius)
+        : center_(center), radius_(radius), errorScale_(maxAbsComponent(center) + radius) {}
 
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
@@ -21,8 +22,6 @@ class Sphere final : public Shape {
 
     Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
     float radius() const { return radius_; }
-    // Surface points are computed as centre + radius · normal.
-    float errorScale() const { return maxAbsComponent(center_) + motionScale() + radius_; }
 
     // Nearest t in (tMin, tMax) where the ray meets the sphere centred at `center`; the
     // quadratic is solved in double precision with the numerically stable root form.
@@ -32,6 +31,7 @@ class Sphere final : public Shape {
   private:
     Vec3 center_;
     float radius_;
+    float errorScale_;  // of centre + radius · normal
 };
 
 }  // namespace rr
