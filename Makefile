@@ -8,15 +8,20 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 SCENE      ?= configs/scenes/cornell_spheres.json
+PROFILE    ?= quick
 SUDO       := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+# Debian's interpreter: it sees Debian's numpy, scipy, matplotlib and OpenImageIO.
+PYTHON     := /usr/bin/python3
+HARNESS     = BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile $(PROFILE)
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
-            python3 python3-numpy python3-matplotlib \
+            python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
             libembree-dev libtbb-dev libopenimageio-dev libopencv-core-dev python3-imath \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
             libboost-dev libgtest-dev libgmock-dev
 
-.PHONY: deps configure build run test asan bench assets format clean
+.PHONY: deps configure build run render test asan bench assets references experiments tables \
+        plots reproduce format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -37,9 +42,32 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
-# Renders the default scene (EXR + PNG preview under results/).
+# The main job: the quick profile of every experiment (references if missing, renders,
+# results JSON, tables, plots), then the paths of what it wrote.
 run: build
+	BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile quick reproduce
+
+# Renders one scene (EXR + PNG preview under results/): make render SCENE=configs/scenes/x.json
+render: build
 	$(BUILD)/bin/renderer render $(SCENE) --out results/$(notdir $(basename $(SCENE))).exr
+
+# Long references into reference/ (missing or stale ones only; FORCE=1 re-renders all).
+references: build
+	$(HARNESS) references $(if $(FORCE),--force)
+
+# Every experiment of the profile -> results/<paper>/<figure>.json (references must exist).
+experiments: build
+	$(HARNESS) run
+
+tables: deps
+	$(HARNESS) tables
+
+plots: deps
+	$(HARNESS) plots
+
+# References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
+reproduce: build
+	$(HARNESS) reproduce
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)

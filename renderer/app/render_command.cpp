@@ -114,7 +114,7 @@ PreparedRender prepare(const RenderCommandOptions& o) {
     applyCommandLine(p.document, o);
     p.out = outputPath(o);
     p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
-    checkOutputWritable(p.out);
+    if (!o.checkOnly) checkOutputWritable(p.out);
     return p;
 }
 
@@ -188,6 +188,12 @@ int runRenderCommand(const RenderCommandOptions& o) {
     }
 
     const RenderSettings& settings = p.loaded.render;
+    if (o.checkOnly) {
+        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\n", o.scene.c_str(),
+                    p.loaded.integrator->name().c_str(), settings.width, settings.height,
+                    settings.spp, featureList(p.loaded.scene->features()).c_str());
+        return 0;
+    }
     RenderOptions options;
     options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
     options.timeLimit = o.timeLimit;

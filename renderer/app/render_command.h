@@ -1,4 +1,5 @@
 // `renderer render SCENE.json [options]`: load, validate, render, write EXR + PNG preview.
+// `renderer check SCENE.json [--set ...]`: the same loading and validation, nothing rendered.
 #pragma once
 
 #include <optional>
@@ -19,10 +20,12 @@ struct RenderCommandOptions {
     std::vector<std::string> overrides;  // "/json/pointer=value"
     float exposure = 0;
     bool preview = true;
+    bool checkOnly = false;  // `renderer check`: load and validate, render nothing
 };
 
 // Exit status: 0 done, 1 failure while rendering or writing, 2 bad input (nothing written),
-// 130 interrupted (a valid image of the samples reached was written).
+// 130 interrupted (a valid image of the samples reached was written). With checkOnly: 0 valid,
+// 2 bad input.
 int runRenderCommand(const RenderCommandOptions& options);
 
 }  // namespace rr

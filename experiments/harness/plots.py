@@ -1,0 +1,133 @@
+"""Plots from results/<paper>/<figure>.json: log-log convergence (error against samples and
+against render time, one line per technique, 95 % seed intervals as bands, fitted slope in
+the legend) and side-by-side crops (reference | baseline | techniques) at the table budget."""
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import paths, tables  # noqa: E402
+
+
+def _series(doc, technique, kind):
+    """(x, mean, lo, hi) over a technique's budgets of one kind, x = mean spp or time."""
+    metric = doc["metrics"][0]
+    rows = sorted((s for s in doc["summary"] if s["technique"] == technique and s["kind"] == kind),
+                  key=lambda s: s["budget"])
+    x = np.array([s["spp" if kind == "spp" else "time"]["mean"] for s in rows])
+    m = [s["metrics"][metric] for s in rows]
+    return (x, np.array([e["mean"] for e in m]), np.array([e["ci95"][0] for e in m]),
+            np.array([e["ci95"][1] for e in m]))
+
+
+def _panel(ax, doc, kind):
+    metric = doc["metrics"][0]
+    for i, technique in enumerate(doc["techniques"]):
+        x, mean, lo, hi = _series(doc, technique, kind)
+        if len(x) == 0:
+            continue
+        colour = f"C{i}"
+        fit = doc["slopes"].get(technique, {}).get("vs_spp" if kind == "spp" else "vs_time")
+        label = technique + (f"  slope {fit['slope']:.3f} ± {fit['slope_stderr']:.3f}" if fit
+                             else "")
+        ax.fill_between(x, np.maximum(lo, mean * 1e-3), hi, color=colour, alpha=0.2, lw=0)
+        ax.plot(x, mean, "o-", color=colour, label=label, ms=4)
+    if kind == "spp":
+        x0 = min(doc["budgets"]["spp"])
+        first = [s for s in doc["summary"] if s["kind"] == "spp" and s["budget"] == x0]
+        y0 = max(s["metrics"][metric]["mean"] for s in first)
+        xs = np.array([x0, max(doc["budgets"]["spp"])], dtype=float)
+        ax.plot(xs, y0 * (xs / x0) ** -0.5, "k:", lw=1, label="N^-0.5")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("samples per pixel" if kind == "spp" else "render time (s, 1 thread)")
+    ax.set_ylabel(tables.METRIC_NAMES[metric])
+    ax.set_title("equal samples" if kind == "spp" else "equal time")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+
+
+def convergence(doc, out):
+    has_time = bool(doc["budgets"]["seconds"])
+    fig, axes = plt.subplots(1, 2 if has_time else 1, figsize=(11 if has_time else 6, 4.2),
+                             squeeze=False)
+    _panel(axes[0][0], doc, "spp")
+    if has_time:
+        _panel(axes[0][1], doc, "time")
+    fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds, "
+                 f"{doc['resolution'][0]}×{doc['resolution'][1]})")
+    fig.tight_layout()
+    _save(fig, out)
+
+
+def _read_rgb(file):
+    import OpenImageIO as oiio
+    image = oiio.ImageInput.open(str(file))
+    if image is None:
+        raise FileNotFoundError(file)
+    spec = image.spec()
+    pixels = image.read_image(0, 0, 0, 3, "float")
+    image.close()
+    return np.asarray(pixels).reshape(spec.height, spec.width, 3)
+
+
+def _display(rgb):
+    """Clamp and encode with the sRGB transfer curve, as the renderer's PNG previews do."""
+    x = np.clip(rgb, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def crops(doc, out):
+    """Reference | baseline | each technique, seed 0 at the table's sample budget. Returns
+    False when the renders are not on disk (results from another machine)."""
+    budget = doc["table"]["spp"]
+    panels = [("reference", paths.ROOT / doc["reference"]["file"])]
+    techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
+    runs = {(r["technique"], r["kind"], r["budget"], r["seed"]): r for r in doc["runs"]}
+    metric = doc["metrics"][0]
+    for t in techniques:
+        run = runs[(t, "spp", budget, 0)]
+        panels.append((f"{t}, {budget:g} spp\n{tables.METRIC_NAMES[metric]} "
+                       f"{run['metrics'][metric]:.3g}", paths.ROOT / run["file"]))
+    if not all(file.exists() for _, file in panels):
+        return False
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.8), squeeze=False,
+                             layout="constrained")
+    for ax, (title, file) in zip(axes[0], panels):
+        rgb = _read_rgb(file)
+        if doc.get("crop"):
+            x, y, w, h = doc["crop"]
+            rgb = rgb[y:y + h, x:x + w]
+        ax.imshow(_display(rgb), interpolation="nearest")
+        ax.set_title(title, fontsize=9)
+        ax.axis("off")
+    _save(fig, out)
+    return True
+
+
+def _save(fig, out):
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_name(f".{out.stem}.tmp.png")
+    fig.savefig(tmp, dpi=110)
+    plt.close(fig)
+    tmp.replace(out)
+
+
+def write_all():
+    written = []
+    for paper, docs in tables.load_results().items():
+        for doc in docs:
+            figure = doc["experiment"].split("/")[1]
+            out = paths.PLOTS / paper / f"{figure}_convergence.png"
+            convergence(doc, out)
+            written.append(out)
+            out = paths.PLOTS / paper / f"{figure}_crops.png"
+            if crops(doc, out):
+                written.append(out)
+            else:
+                print(f"skipped {paths.relative(out)}: the renders of this run are not on disk",
+                      file=sys.stderr)
+    return written

@@ -1,0 +1,54 @@
+"""Provenance of results (git commit, machine) and atomic JSON output."""
+import hashlib
+import json
+import os
+import platform
+import subprocess
+import tempfile
+from pathlib import Path
+
+from . import paths
+
+
+def _git(*args):
+    proc = subprocess.run(["git", "-C", str(paths.ROOT), *args], capture_output=True, text=True)
+    return proc.stdout.strip() if proc.returncode == 0 else None
+
+
+def git_commit():
+    return _git("rev-parse", "HEAD")
+
+
+def git_dirty():
+    """True when tracked sources differ from the commit (results/ and reference/ excluded,
+    since runs write there)."""
+    status = _git("status", "--porcelain", "--untracked-files=no", "--", ".",
+                  ":(exclude)results", ":(exclude)reference")
+    return bool(status)
+
+
+def machine():
+    cpu = "unknown"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return {"hostname": platform.node(), "cpu": cpu, "cores": len(os.sched_getaffinity(0)),
+            "os": platform.platform(), "python": platform.python_version()}
+
+
+def sha256_file(path):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def write_json_atomically(path, value):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.NamedTemporaryFile("w", dir=path.parent, prefix=f".{path.name}.",
+                                     suffix=".tmp", delete=False) as f:
+        json.dump(value, f, indent=1, sort_keys=False, ensure_ascii=False)
+        f.write("\n")
+    os.replace(f.name, path)

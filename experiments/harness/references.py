@@ -1,0 +1,135 @@
+"""Long reference renders and their manifest (reference/manifest.json).
+
+A reference is the average of two independent half-references; half their RMS difference
+estimates the reference's own noise (Var((A+B)/2) = Var(A-B)/4). A comparison is refused
+when that noise is not below a fifth of the smallest error measured against the reference."""
+import datetime
+import hashlib
+import json
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+from . import jobs, paths, provenance, renders
+from .errors import HarnessFailure
+
+MAX_NOISE_RATIO = 0.2
+
+
+def file_name(exp, profile):
+    return Path(exp.paper_name) / f"{exp.figure}.{profile.name}.exr"
+
+
+def key(exp, profile):
+    """Everything that determines the reference image; a change makes the reference stale."""
+    spec = {
+        "scene_file_sha256": hashlib.sha256(exp.scene.read_bytes()).hexdigest(),
+        "set": exp.overrides,
+        "integrator": exp.reference_integrator,
+        "resolution": list(profile.resolution),
+        "spp": profile.reference_spp,
+    }
+    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
+
+
+def load_manifest():
+    if not paths.MANIFEST.exists():
+        return {}
+    return json.loads(paths.MANIFEST.read_text())
+
+
+def save_manifest(manifest):
+    provenance.write_json_atomically(paths.MANIFEST, manifest)
+
+
+def entry_name(exp, profile):
+    return f"{exp.id}/{profile.name}"
+
+
+def status(exp, profile, manifest=None):
+    """'ok', 'missing' or 'stale'."""
+    entry = (manifest if manifest is not None else load_manifest()).get(entry_name(exp, profile))
+    file = paths.REFERENCE / file_name(exp, profile)
+    if entry is None or not file.exists():
+        return "missing"
+    if entry["key"] != key(exp, profile) or entry["sha256"] != provenance.sha256_file(file):
+        return "stale"
+    return "ok"
+
+
+def lookup(exp, profile):
+    """The manifest entry of a current reference; refuses a missing or stale one."""
+    manifest = load_manifest()
+    state = status(exp, profile, manifest)
+    if state != "ok":
+        raise HarnessFailure(f"{exp.id}: the {profile.name} reference is {state}; run "
+                             f"`make references PROFILE={profile.name}`")
+    entry = manifest[entry_name(exp, profile)]
+    return entry, paths.REFERENCE / entry["file"]
+
+
+def render_reference(exp, profile):
+    """Renders the two halves with all cores, merges them, records the manifest entry."""
+    out = paths.REFERENCE / file_name(exp, profile)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    half_spp = profile.reference_spp // 2
+    seeds = [renders.REFERENCE_SEED_BASE, renders.REFERENCE_SEED_BASE + 1]
+    print(f"[references] {entry_name(exp, profile)}: 2 x {half_spp} spp of "
+          f"{exp.reference_integrator['type']} at {profile.resolution[0]}x{profile.resolution[1]}",
+          flush=True)
+    started = time.monotonic()
+    with tempfile.TemporaryDirectory(dir=paths.REFERENCE, prefix=".halves-") as scratch:
+        halves = [Path(scratch) / f"half{i}.exr" for i in range(2)]
+        for half, seed in zip(halves, seeds):
+            renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
+                           threads=jobs.default_jobs())
+        merged = json.loads(jobs.run_command(
+            [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
+    manifest = load_manifest()
+    manifest[entry_name(exp, profile)] = {
+        "file": str(file_name(exp, profile)),
+        "key": key(exp, profile),
+        "scene": paths.relative(exp.scene),
+        "set": exp.overrides,
+        "integrator": exp.reference_integrator,
+        "resolution": list(profile.resolution),
+        "spp": profile.reference_spp,
+        "seeds": seeds,
+        "wall_seconds": round(time.monotonic() - started, 2),
+        "sha256": provenance.sha256_file(out),
+        "noise_rmse": merged["noise_rmse"],
+        "noise_sigma_over_mu": merged["noise_sigma_over_mu"],
+        "created": datetime.date.today().isoformat(),
+        "git_commit": provenance.git_commit(),
+    }
+    save_manifest(manifest)
+    print(f"[references] {paths.relative(out)}: noise σ/µ {merged['noise_sigma_over_mu']:.3g}",
+          flush=True)
+
+
+def ensure(experiments, profile_name, force=False):
+    """Renders every reference that is missing or stale (or all of them with force)."""
+    for exp in experiments:
+        profile = exp.profiles[profile_name]
+        if force or status(exp, profile) != "ok":
+            render_reference(exp, profile)
+
+
+def check_noise(exp, profile, entry, smallest_rmse, record=True):
+    """Refuses a too-noisy reference; with record, writes the ratio into the manifest."""
+    ratio = entry["noise_rmse"] / smallest_rmse
+    if record:
+        manifest = load_manifest()
+        manifest[entry_name(exp, profile)]["noise_check"] = {
+            "smallest_rmse_compared": smallest_rmse,
+            "noise_ratio": ratio,
+            "max_ratio": MAX_NOISE_RATIO,
+        }
+        save_manifest(manifest)
+    if ratio >= MAX_NOISE_RATIO:
+        raise HarnessFailure(
+            f"{exp.id}: the {profile.name} reference's noise (RMSE {entry['noise_rmse']:.3g}) is "
+            f"{ratio:.2f} of the smallest error compared against it ({smallest_rmse:.3g}); it "
+            f"must be below {MAX_NOISE_RATIO}. Raise reference_spp.")
+    return ratio

@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""The experiment harness's command line.
+
+  run.py validate   [CONFIG ...]                 check experiment configs (and, by default,
+                                                 every scene in configs/scenes/)
+  run.py references [CONFIG ...] [--force]       render missing or stale references
+  run.py run        [CONFIG ...]                 run experiments -> results/<paper>/<figure>.json
+  run.py tables                                  results -> results/tables/<paper>.{md,csv,tex}
+  run.py plots                                   results -> results/plots/<paper>/*.png
+  run.py check      [CONFIG ...]                 CI: fail when an error exceeds its threshold
+  run.py calibrate  CONFIG [--spp N ...]         propose thresholds from the results file
+  run.py reproduce                               references, run, tables and plots
+
+CONFIG defaults to every configs/experiments/<paper>/<figure>.json. --profile quick|full
+(default quick, or $PROFILE). Exit status: 0 done, 1 a step failed (or a threshold), 2 bad
+input (one message naming the JSON pointer)."""
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from harness import (config, experiment, jobs, paths, references,  # noqa: E402
+                     renders, thresholds)
+from harness.errors import ConfigError, HarnessFailure  # noqa: E402
+
+
+def load_configs(files):
+    files = files or paths.all_experiment_configs()
+    return [config.load(f) for f in files]
+
+
+def validate_scenes():
+    """`renderer check` on every configs/scenes/*.json. A scene whose asset is absent is
+    skipped with a message, unless REQUIRE_ASSETS=1 (CI has ../shared beside the checkout)."""
+    for scene in sorted((paths.ROOT / "configs" / "scenes").glob("*.json")):
+        try:
+            jobs.run_command([paths.renderer_binary(), "check", scene])
+        except HarnessFailure as e:
+            if " not found; searched " in str(e) and os.environ.get("REQUIRE_ASSETS") != "1":
+                print(f"{paths.relative(scene)}: skipped, an asset is absent ({e})")
+                continue
+            raise ConfigError(scene, "", f"does not validate: {e}") from None
+        print(f"{paths.relative(scene)}: valid")
+
+
+def cmd_validate(args):
+    if not args.configs:
+        validate_scenes()
+    for exp in load_configs(args.configs):
+        for profile in exp.profiles.values():
+            for integrator in [t.integrator for t in exp.techniques.values()] + [
+                    exp.reference_integrator]:
+                try:
+                    renders.check_scene(exp, profile, integrator)
+                except HarnessFailure as e:
+                    raise ConfigError(exp.file, "", f"the scene does not validate: {e}") from None
+        print(f"{paths.relative(exp.file)}: valid")
+    return 0
+
+
+def cmd_references(args):
+    references.ensure(load_configs(args.configs), args.profile, force=args.force)
+    return 0
+
+
+def cmd_run(args):
+    for exp in load_configs(args.configs):
+        out = experiment.run(exp, args.profile, args.jobs)
+        print(f"[{exp.id}] wrote {paths.relative(out)}", flush=True)
+    return 0
+
+
+def cmd_tables(args):
+    from harness import tables
+    for out in tables.write_all():
+        print(f"wrote {paths.relative(out)}")
+    return 0
+
+
+def cmd_plots(args):
+    from harness import plots
+    for out in plots.write_all():
+        print(f"wrote {paths.relative(out)}")
+    return 0
+
+
+def cmd_check(args):
+    failed = 0
+    for exp in load_configs(args.configs):
+        if exp.thresholds is None:
+            continue
+        verdicts = thresholds.run_check(exp, args.jobs)
+        print(f"[{exp.id}] thresholds ({exp.thresholds.profile} profile):")
+        print(thresholds.format_verdicts(exp, verdicts), flush=True)
+        failed += sum(not v["passed"] for v in verdicts)
+    if failed:
+        print(f"{failed} threshold(s) failed", file=sys.stderr)
+    return 1 if failed else 0
+
+
+def cmd_calibrate(args):
+    exp = config.load(args.config)
+    results_file = paths.RESULTS / exp.paper_name / f"{exp.figure}.json"
+    if not results_file.exists():
+        raise HarnessFailure(f"no results at {paths.relative(results_file)}: run it first")
+    results = json.loads(results_file.read_text())
+    spps = args.spp or [results["table"]["spp"], max(results["budgets"]["spp"])]
+    print(thresholds.format_block(thresholds.calibrate(exp, results, spps)))
+    return 0
+
+
+def cmd_reproduce(args):
+    cmd_references(args)
+    cmd_run(args)
+    cmd_tables(args)
+    cmd_plots(args)
+    print(f"\n{args.profile} profile reproduced. Tables: {paths.relative(paths.TABLES)}/, "
+          f"plots: {paths.relative(paths.PLOTS)}/, results: {paths.relative(paths.RESULTS)}/"
+          "<paper>/<figure>.json")
+    return 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--profile", choices=config.PROFILES,
+                        default=os.environ.get("PROFILE") or "quick")
+    parser.add_argument("--jobs", type=int, default=jobs.default_jobs(),
+                        help="renders run in parallel (default: the number of cores)")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for name in ("validate", "references", "run", "check", "reproduce"):
+        p = sub.add_parser(name)
+        p.add_argument("configs", nargs="*", type=Path)
+        if name in ("references", "reproduce"):
+            p.add_argument("--force", action="store_true", help="re-render current references")
+    sub.add_parser("tables")
+    sub.add_parser("plots")
+    p = sub.add_parser("calibrate")
+    p.add_argument("config", type=Path)
+    p.add_argument("--spp", type=int, nargs="*", help="budgets to set thresholds at")
+    args = parser.parse_args()
+    if args.profile not in config.PROFILES:
+        print(f"error: unknown profile {args.profile}", file=sys.stderr)
+        return 2
+    try:
+        return globals()[f"cmd_{args.command}"](args)
+    except ConfigError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except HarnessFailure as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("\ninterrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

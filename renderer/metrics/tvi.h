@@ -1,0 +1,13 @@
+// Threshold-versus-intensity functions of Ferwerda et al. 1996 ("A model of visual adaptation
+// for realistic image synthesis"): the smallest visible luminance difference against an
+// adapting luminance, both in cd/m².
+#pragma once
+
+namespace rr {
+
+// Cone (photopic) threshold; the one the tvi error of Lai et al. 2007 uses.
+double photopicTvi(double adaptingLuminance);
+// Rod (scotopic) threshold, for completeness; no metric uses it.
+double scotopicTvi(double adaptingLuminance);
+
+}  // namespace rr

@@ -1,0 +1,56 @@
+"""Shared test data: a minimal valid experiment config and a synthetic results document."""
+import copy
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "experiments"))
+
+from harness import config  # noqa: E402
+
+VALID = {
+    "description": "test experiment",
+    "scene": "configs/scenes/cornell_spheres.json",
+    "set": {"/render/sampler": "independent"},
+    "techniques": {
+        "base": {"integrator": {"type": "path"}},
+        "better": {"label": "better", "integrator": {"type": "path_mis"}},
+    },
+    "baseline": "base",
+    "metrics": ["sigma_over_mu", "p_eff"],
+    "reference": {"integrator": {"type": "path_mis"}},
+    "profiles": {
+        name: {"resolution": [8, 8], "spp": [4, 16], "seconds": [0.5], "seeds": 5,
+               "reference_spp": 64, "table": {"spp": 16, "seconds": 0.5}}
+        for name in ("quick", "full")
+    },
+    "paper": {"source": "a paper", "metric": "sigma_over_mu", "spp": 16,
+              "values": {"base": 1.0, "better": 0.5}},
+    "thresholds": {"profile": "quick", "method": "by hand",
+                   "checks": [{"technique": "better", "spp": 16, "max_error": 0.3,
+                               "min_gain": 2.0}]},
+}
+
+
+def valid():
+    return copy.deepcopy(VALID)
+
+
+def load_config(document, figure="figure"):
+    """Writes `document` (a dict, or raw text) as <tmp>/paper/<figure>.json and loads it."""
+    directory = Path(tempfile.mkdtemp()) / "paper"
+    directory.mkdir()
+    file = directory / f"{figure}.json"
+    file.write_text(document if isinstance(document, str) else json.dumps(document))
+    return config.load(file)
+
+
+def summary_entry(technique, kind, budget, metric_values, gain=None):
+    from harness import stats
+    e = stats.estimate(metric_values)
+    return {"technique": technique, "kind": kind, "budget": budget,
+            "spp": stats.estimate([budget] * 2).to_json(),
+            "time": stats.estimate([1.0, 1.0]).to_json(),
+            "metrics": {"sigma_over_mu": e.to_json(), "p_eff": None},
+            "gain": {"sigma_over_mu": gain} if gain else {}}

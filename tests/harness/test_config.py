@@ -1,0 +1,96 @@
+"""Experiment configs: a valid one loads; every kind of bad input names its JSON pointer."""
+import unittest
+
+from fixtures import load_config, valid
+from harness.errors import ConfigError
+
+
+class ValidConfigTest(unittest.TestCase):
+    def test_loads_with_derived_names(self):
+        exp = load_config(valid(), figure="fig5")
+        self.assertEqual(exp.id, "paper/fig5")
+        self.assertEqual(exp.primary_metric, "sigma_over_mu")
+        self.assertEqual(list(exp.techniques), ["base", "better"])
+        self.assertEqual(exp.techniques["base"].label, "base")
+        self.assertEqual(exp.profiles["quick"].table_spp, 16)
+        self.assertEqual(exp.paper[0].values["better"], 0.5)
+        self.assertEqual(exp.thresholds.checks[0].min_gain, 2.0)
+
+    def test_thresholds_and_paper_are_optional(self):
+        doc = valid()
+        del doc["thresholds"], doc["paper"]
+        exp = load_config(doc)
+        self.assertIsNone(exp.thresholds)
+        self.assertEqual(exp.paper, [])
+
+
+class BadConfigTest(unittest.TestCase):
+    def assertRejects(self, doc, pointer, fragment):
+        with self.assertRaises(ConfigError) as caught:
+            load_config(doc)
+        self.assertEqual(caught.exception.pointer, pointer, str(caught.exception))
+        self.assertIn(fragment, caught.exception.message)
+
+    def mutated(self, change):
+        doc = valid()
+        change(doc)
+        return doc
+
+    def test_malformed_json(self):
+        self.assertRejects('{"description": ', "", "malformed JSON")
+
+    def test_non_json_constants(self):
+        self.assertRejects('{"description": Infinity}', "", "Infinity is not JSON")
+
+    def test_duplicate_key(self):
+        self.assertRejects('{"description": "a", "description": "b"}', "", "duplicate key")
+
+    def test_unknown_keys_at_every_level(self):
+        self.assertRejects(self.mutated(lambda d: d.update(extra=1)), "/extra", "unknown key")
+        self.assertRejects(self.mutated(lambda d: d["profiles"]["quick"].update(sppp=1)),
+                           "/profiles/quick/sppp", "unknown key")
+        self.assertRejects(
+            self.mutated(lambda d: d["thresholds"]["checks"][0].update(max_eror=1)),
+            "/thresholds/checks/0/max_eror", "unknown key")
+
+    def test_missing_required_key(self):
+        self.assertRejects(self.mutated(lambda d: d.pop("baseline")), "/baseline", "missing")
+        self.assertRejects(self.mutated(lambda d: d["profiles"].pop("full")), "/profiles/full",
+                           "missing")
+
+    def test_impossible_values(self):
+        cases = [
+            (lambda d: d["profiles"]["quick"].update(seeds=4), "/profiles/quick/seeds", ">= 5"),
+            (lambda d: d["profiles"]["quick"].update(spp=[16, 4]), "/profiles/quick/spp",
+             "increasing"),
+            (lambda d: d["profiles"]["quick"].update(seconds=[-1]), "/profiles/quick/seconds",
+             "positive"),
+            (lambda d: d["profiles"]["quick"].update(reference_spp=63),
+             "/profiles/quick/reference_spp", "even"),
+            (lambda d: d["profiles"]["quick"]["table"].update(spp=8),
+             "/profiles/quick/table/spp", "one of the profile's spp"),
+            (lambda d: d["profiles"]["quick"].update(crop=[4, 4, 8, 8]),
+             "/profiles/quick/crop", "inside the image"),
+            (lambda d: d.update(baseline="nope"), "/baseline", "one of the techniques"),
+            (lambda d: d.update(metrics=["sigma_over_mu", "psnr"]), "/metrics/1",
+             "unknown metric"),
+            (lambda d: d.update(scene="configs/scenes/missing.json"), "/scene", "not found"),
+            (lambda d: d.update(set={"render/spp": 1}), "/set", "JSON pointers"),
+            (lambda d: d["techniques"]["base"].update(integrator={}), "/techniques/base/integrator",
+             "type"),
+            (lambda d: d["paper"]["values"].update(ghost=1.0), "/paper/values/ghost",
+             "not one of the techniques"),
+            (lambda d: d["thresholds"]["checks"][0].update(spp=8), "/thresholds/checks/0/spp",
+             "spp budgets"),
+            (lambda d: d["thresholds"]["checks"][0].update(technique="base"),
+             "/thresholds/checks/0/min_gain", "baseline"),
+            (lambda d: d["thresholds"]["checks"][0].update(max_error=0),
+             "/thresholds/checks/0/max_error", "positive finite"),
+        ]
+        for change, pointer, fragment in cases:
+            with self.subTest(pointer=pointer):
+                self.assertRejects(self.mutated(change), pointer, fragment)
+
+
+if __name__ == "__main__":
+    unittest.main()

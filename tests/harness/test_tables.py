@@ -1,0 +1,58 @@
+"""Tables: a synthetic results document renders rows with intervals, gains and verdicts."""
+import csv
+import io
+import unittest
+
+from fixtures import summary_entry
+from harness import stats, tables
+
+BASE = [1.0, 1.1, 0.9, 1.05, 0.95]
+BETTER = [0.2, 0.22, 0.18, 0.21, 0.19]
+
+
+def document():
+    g = stats.gain(stats.estimate(BASE), stats.estimate(BETTER), False).to_json()
+    return {
+        "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
+        "techniques": {"base": {}, "better": {}}, "baseline": "base",
+        "metrics": ["sigma_over_mu", "p_eff"], "resolution": [8, 8], "seeds": [0, 1, 2, 3, 4],
+        "table": {"spp": 16, "seconds": None},
+        "paper": [{"source": "x", "metric": "sigma_over_mu", "spp": 16,
+                   "values": {"base": 1.045, "better": 0.207}}],
+        "summary": [summary_entry("base", "spp", 16, BASE),
+                    summary_entry("better", "spp", 16, BETTER, g)],
+        "slopes": {"base": {"vs_spp": {"slope": -0.5, "slope_stderr": 0.01, "r2": 0.99,
+                                       "n": 10}}},
+        "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
+                      "noise_sigma_over_mu": 0.01, "noise_ratio_to_smallest_error": 0.05},
+        "provenance": {"parallel_jobs": 2, "threads_per_job": 1, "git_commit": "abc",
+                       "git_dirty": False},
+    }
+
+
+class TablesTest(unittest.TestCase):
+    def test_markdown_row_has_interval_gain_paper_gain_and_verdict(self):
+        text = tables.markdown("paper", [document()])
+        row = [line for line in text.splitlines() if line.startswith("| fig5 | better |")][0]
+        # gain 1.0 / 0.2 = 5; the paper's 1.045 / 0.207 = 5.05 -> reproduced
+        self.assertIn("×5 [", row)
+        self.assertIn("×5.05", row)
+        self.assertIn("reproduced", row)
+        self.assertIn("0.207 (16 spp)", row)
+        self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | — | — | 10 |", text)
+
+    def test_csv_has_every_metric_of_every_budget(self):
+        rows = list(csv.DictReader(io.StringIO(tables.csv_text([document()]))))
+        self.assertEqual(len(rows), 4)  # 2 techniques x 2 metrics
+        better = [r for r in rows if r["technique"] == "better" and r["metric"] == "sigma_over_mu"]
+        self.assertAlmostEqual(float(better[0]["mean"]), 0.2)
+        self.assertEqual(better[0]["verdict"], "reproduced")
+
+    def test_latex_escapes_names(self):
+        doc = document()
+        doc["experiment"] = "paper/fig_5"
+        self.assertIn(r"fig\_5", tables.latex("paper", [doc]))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,54 @@
+"""CI thresholds: the check passes at the stored limits and fails once a limit is tightened
+below the measurement (so the CI check can fail); calibration is mean + 4 sd, gain - 4 s.e."""
+import unittest
+
+from fixtures import load_config, summary_entry, valid
+from harness import stats, thresholds
+
+# Seeds' σ/µ: baseline mean 0.6, technique mean 0.25 -> gain 2.4.
+BASE = [0.58, 0.60, 0.62, 0.59, 0.61]
+BETTER = [0.24, 0.25, 0.26, 0.245, 0.255]
+
+
+def summary():
+    g = stats.gain(stats.estimate(BASE), stats.estimate(BETTER), False).to_json()
+    return [summary_entry("base", "spp", 16, BASE), summary_entry("better", "spp", 16, BETTER, g)]
+
+
+class EvaluateTest(unittest.TestCase):
+    def verdicts(self, max_error, min_gain):
+        doc = valid()
+        doc["thresholds"]["checks"][0].update(max_error=max_error, min_gain=min_gain)
+        return thresholds.evaluate(load_config(doc), summary())
+
+    def test_passes_above_the_measurement(self):
+        v = self.verdicts(0.3, 2.0)
+        self.assertEqual([x["passed"] for x in v], [True, True])
+        self.assertAlmostEqual(v[0]["measured"], 0.25)
+        self.assertAlmostEqual(v[1]["measured"], 2.4)
+
+    def test_fails_when_tightened_below_the_measurement(self):
+        v = self.verdicts(0.249, 2.41)
+        self.assertEqual([x["passed"] for x in v], [False, False])
+        text = thresholds.format_verdicts(load_config(valid()), v)
+        self.assertIn("FAIL better at 16 spp: sigma_over_mu 0.25 (must be <= 0.249)", text)
+
+
+class CalibrateTest(unittest.TestCase):
+    def test_mean_plus_four_sd_and_gain_minus_four_stderr(self):
+        results = {"summary": summary(), "seeds": list(range(5)), "profile": "quick",
+                   "provenance": {"git_commit": "0123456789abc", "started": "2026-11-22T10:00"}}
+        block = thresholds.calibrate(load_config(valid()), results, [16])
+        better = [c for c in block["checks"] if c["technique"] == "better"][0]
+        e = stats.estimate(BETTER)
+        self.assertGreaterEqual(better["max_error"], e.mean + 4 * e.sd)
+        self.assertLess(better["max_error"], e.mean + 4 * e.sd + 0.001)  # rounded up, 3 digits
+        g = stats.gain(stats.estimate(BASE), e, False)
+        self.assertLessEqual(better["min_gain"], g.value - 4 * g.stderr)
+        self.assertGreater(better["min_gain"], g.value - 4 * g.stderr - 0.01)
+        self.assertIn("mean + 4 sd", block["method"])
+        self.assertNotIn("min_gain", [c for c in block["checks"] if c["technique"] == "base"][0])
+
+
+if __name__ == "__main__":
+    unittest.main()
