@@ -46,17 +46,22 @@ def validate_scenes():
         print(f"{paths.relative(scene)}: valid")
 
 
+def validate_experiment(exp):
+    """The scene documents of every technique and of the reference, in both profiles."""
+    for profile in exp.profiles.values():
+        for integrator in [t.integrator for t in exp.techniques.values()] + [
+                exp.reference_integrator]:
+            try:
+                renders.check_scene(exp, profile, integrator)
+            except HarnessFailure as e:
+                raise ConfigError(exp.file, "", f"the scene does not validate: {e}") from None
+
+
 def cmd_validate(args):
     if not args.configs:
         validate_scenes()
     for exp in load_configs(args.configs):
-        for profile in exp.profiles.values():
-            for integrator in [t.integrator for t in exp.techniques.values()] + [
-                    exp.reference_integrator]:
-                try:
-                    renders.check_scene(exp, profile, integrator)
-                except HarnessFailure as e:
-                    raise ConfigError(exp.file, "", f"the scene does not validate: {e}") from None
+        validate_experiment(exp)
         print(f"{paths.relative(exp.file)}: valid")
     return 0
 
@@ -67,7 +72,10 @@ def cmd_references(args):
 
 
 def cmd_run(args):
-    for exp in load_configs(args.configs):
+    experiments = load_configs(args.configs)
+    for exp in experiments:
+        validate_experiment(exp)
+    for exp in experiments:
         out = experiment.run(exp, args.profile, args.jobs)
         print(f"[{exp.id}] wrote {paths.relative(out)}", flush=True)
     return 0
@@ -75,14 +83,14 @@ def cmd_run(args):
 
 def cmd_tables(args):
     from harness import tables
-    for out in tables.write_all():
+    for out in tables.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 
 
 def cmd_plots(args):
     from harness import plots
-    for out in plots.write_all():
+    for out in plots.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 
@@ -103,7 +111,7 @@ def cmd_check(args):
 
 def cmd_calibrate(args):
     exp = config.load(args.config)
-    results_file = paths.RESULTS / exp.paper_name / f"{exp.figure}.json"
+    results_file = paths.results_file(exp, args.profile)
     if not results_file.exists():
         raise HarnessFailure(f"no results at {paths.relative(results_file)}: run it first")
     results = json.loads(results_file.read_text())
@@ -123,12 +131,19 @@ def cmd_reproduce(args):
     return 0
 
 
+def positive_int(text):
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text}")
+    return value
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--profile", choices=config.PROFILES,
                         default=os.environ.get("PROFILE") or "quick")
-    parser.add_argument("--jobs", type=int, default=jobs.default_jobs(),
+    parser.add_argument("--jobs", type=positive_int, default=jobs.default_jobs(),
                         help="renders run in parallel (default: the number of cores)")
     sub = parser.add_subparsers(dest="command", required=True)
     for name in ("validate", "references", "run", "check", "reproduce"):

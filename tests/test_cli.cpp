@@ -1,11 +1,7 @@
 // The renderer binary end to end: outputs and metadata, exit status 2 with one message for bad
 // input and nothing written, time-limited renders, Ctrl-C, and thread-count independence.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -14,9 +10,8 @@
 #include <thread>
 
 #include "io/exr_io.h"
+#include "support/child_process.h"
 #include "support/scratch.h"
-
-extern char** environ;
 
 namespace rr::test {
 namespace {
@@ -25,41 +20,14 @@ namespace fs = std::filesystem;
 
 const std::string kScene = std::string(TEST_SCENES_DIR) + "/cornell_spheres.json";
 
-struct Process {
-    pid_t pid = -1;
-    fs::path stderrFile;
-};
-
-// Starts the renderer with `args`, stderr to a file in `dir`.
-Process start(const std::vector<std::string>& args, const fs::path& dir) {
-    Process p;
-    p.stderrFile = dir / "stderr.txt";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, p.stderrFile.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    std::vector<std::string> all{RENDERER_BINARY};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
-    EXPECT_EQ(posix_spawn(&p.pid, RENDERER_BINARY, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    return p;
+ChildProcess start(const std::vector<std::string>& args, const fs::path& dir) {
+    return startProcess(RENDERER_BINARY, args, dir);
 }
 
-int wait(const Process& p, std::string* errors = nullptr) {
-    int status = 0;
-    waitpid(p.pid, &status, 0);
-    if (errors) {
-        std::ifstream in(p.stderrFile);
-        std::ostringstream s;
-        s << in.rdbuf();
-        *errors = s.str();
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+int wait(const ChildProcess& p, std::string* errors = nullptr) {
+    const ProcessResult r = waitProcess(p);
+    if (errors) *errors = r.errors;
+    return r.status;
 }
 
 int run(const std::vector<std::string>& args, const fs::path& dir, std::string* errors = nullptr) {
@@ -170,6 +138,30 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 // An output that cannot be written is found before rendering (status 2), not after.
+TEST(Cli, CheckValidatesWithoutWritingAndHashesTheDocumentAfterOverrides) {
+    const fs::path dir = scratchDirectory();
+    const ProcessResult plain = runProcess(RENDERER_BINARY, {"check", kScene}, dir);
+    ASSERT_EQ(plain.status, 0) << plain.errors;
+    const size_t at = plain.out.find("scene sha256 ");
+    ASSERT_NE(at, std::string::npos) << plain.out;
+    const std::string hash = plain.out.substr(at + 13, 64);
+    const ProcessResult overridden =
+        runProcess(RENDERER_BINARY, {"check", kScene, "--set", "/render/spp=3"}, dir);
+    ASSERT_EQ(overridden.status, 0) << overridden.errors;
+    EXPECT_EQ(overridden.out.find(hash), std::string::npos) << "an override must change the hash";
+    const ProcessResult again = runProcess(RENDERER_BINARY, {"check", kScene}, dir);
+    EXPECT_NE(again.out.find(hash), std::string::npos);
+
+    const ProcessResult bad =
+        runProcess(RENDERER_BINARY, {"check", kScene, "--set", "/render/sppp=3"}, dir);
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.errors.find("/render/sppp"), std::string::npos) << bad.errors;
+    size_t files = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir))
+        ++files;
+    EXPECT_EQ(files, 2u) << "only the captured stdout.txt and stderr.txt";
+}
+
 TEST(Cli, UnwritableOutputIsRejectedBeforeRendering) {
     const fs::path dir = scratchDirectory();
     fs::create_directories(dir / "taken.exr");
@@ -202,9 +194,9 @@ TEST(Cli, TimeLimitRecordsTheSamplesReached) {
 
 TEST(Cli, InterruptSavesAValidImageOfTheSamplesReached) {
     const fs::path dir = scratchDirectory();
-    const Process p = start({"render", kScene, "--resolution", "64x64", "--spp", "1000000", "--out",
-                             (dir / "i.exr").string(), "--no-preview"},
-                            dir);
+    const ChildProcess p = start({"render", kScene, "--resolution", "64x64", "--spp", "1000000",
+                                  "--out", (dir / "i.exr").string(), "--no-preview"},
+                                 dir);
     // Wait until rendering has started (the scene loads in milliseconds), then interrupt.
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     kill(p.pid, SIGINT);

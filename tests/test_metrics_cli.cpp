@@ -1,22 +1,16 @@
 // The metrics binary end to end: compare, slope and merge outputs, the render time taken from
 // the image's metadata, and exit status 2 with one stderr line and nothing written for bad input.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "io/exr_io.h"
+#include "support/child_process.h"
 #include "support/scratch.h"
-
-extern char** environ;
 
 namespace rr::test {
 namespace {
@@ -24,43 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using Result = ProcessResult;
 
-struct Result {
-    int status = -1;
-    std::string out, errors;
-};
-
-// Runs the metrics binary with `args`, stdout and stderr to files in `dir`.
 Result run(const std::vector<std::string>& args, const fs::path& dir) {
-    const fs::path outFile = dir / "stdout.txt", errorFile = dir / "stderr.txt";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, outFile.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errorFile.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all{METRICS_BINARY};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    Result r;
-    EXPECT_EQ(posix_spawn(&pid, METRICS_BINARY, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.out = readText(outFile);
-    r.errors = readText(errorFile);
-    return r;
+    return runProcess(METRICS_BINARY, args, dir);
 }
 
 // Writes an image from one RGB triple per pixel, row-major.

@@ -5,6 +5,7 @@ The schema is documented in configs/README.md ("Experiments")."""
 import hashlib
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,8 +22,15 @@ METRICS = {
     "p_eff": True,
     "mse_eff": True,
 }
+# Efficiencies are 1/(T·error): the error metric each one is built on.
+EFFICIENCY_OF = {"p_eff": "tvi_err", "mse_eff": "mse"}
 PROFILES = ("quick", "full")
 MIN_SEEDS = 5
+# Technique names become directory names and JSON-pointer segments.
+NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]+")
+# The harness sets these per render; `set` may not.
+HARNESS_OWNED = ("/integrator", "/render/spp", "/render/seed", "/render/resolution")
+ABSENT = object()  # a missing key, as opposed to a JSON null
 
 
 @dataclass
@@ -73,7 +81,7 @@ class Thresholds:
 class Experiment:
     id: str  # "<paper>/<figure>"
     file: Path
-    text_sha256: str
+    config_sha256: str  # of the document without its thresholds (calibrating keeps results)
     description: str
     scene: Path
     overrides: dict
@@ -82,6 +90,7 @@ class Experiment:
     metrics: list  # the first is the primary metric
     reference_integrator: dict
     profiles: dict
+    relmse_reject: float
     paper: list = field(default_factory=list)
     thresholds: Thresholds | None = None
 
@@ -115,6 +124,8 @@ class _Reader:
         return key in self.value
 
     def raw(self, key, required=True, default=None):
+        """The value at key; `default` when it is absent and optional. A JSON null is a
+        value, which every typed accessor rejects."""
         self.used.add(key)
         if key not in self.value:
             if required:
@@ -126,25 +137,35 @@ class _Reader:
         return _Reader(self.file, self.raw(key), f"{self.pointer}/{key}")
 
     def string(self, key, required=True, default=None):
-        v = self.raw(key, required, default)
-        if v is not default and not (isinstance(v, str) and v):
+        v = self.raw(key, required, ABSENT)
+        if v is ABSENT:
+            return default
+        if not (isinstance(v, str) and v):
             self.fail("expected a non-empty string", key)
         return v
 
     def integer(self, key, minimum, required=True, default=None):
-        v = self.raw(key, required, default)
-        if v is default:
-            return v
+        v = self.raw(key, required, ABSENT)
+        if v is ABSENT:
+            return default
         if not (isinstance(v, int) and not isinstance(v, bool)) or v < minimum:
             self.fail(f"expected an integer >= {minimum}", key)
         return v
 
     def positive(self, key, required=True, default=None):
-        v = self.raw(key, required, default)
-        if v is default:
-            return v
+        v = self.raw(key, required, ABSENT)
+        if v is ABSENT:
+            return default
         if not _is_positive_number(v):
             self.fail("expected a positive finite number", key)
+        return float(v)
+
+    def fraction(self, key, upper, default):
+        v = self.raw(key, False, ABSENT)
+        if v is ABSENT:
+            return default
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < upper):
+            self.fail(f"expected a number in [0, {upper})", key)
         return float(v)
 
     def finish(self):
@@ -179,19 +200,23 @@ def load(file):
     """Loads and validates one experiment config. Raises ConfigError."""
     file = Path(file)
     try:
-        text = file.read_text()
+        text = file.read_text(encoding="utf-8")
     except OSError as e:
         raise ConfigError(file, "", f"cannot read: {e.strerror}") from None
+    except UnicodeDecodeError as e:
+        raise ConfigError(file, "", f"not UTF-8 text: {e.reason} at byte {e.start}") from None
     try:
         doc = json.loads(text, object_pairs_hook=_reject_duplicate_keys,
                          parse_constant=_reject_constant)
     except ValueError as e:
         raise ConfigError(file, "", f"malformed JSON: {e}") from None
     r = _Reader(file, doc)
+    without_thresholds = {k: v for k, v in doc.items() if k != "thresholds"}
     exp = Experiment(
         id=paths.experiment_id(file),
         file=file,
-        text_sha256=hashlib.sha256(text.encode()).hexdigest(),
+        config_sha256=hashlib.sha256(
+            json.dumps(without_thresholds, sort_keys=True).encode()).hexdigest(),
         description=r.string("description"),
         scene=_scene(r),
         overrides=_overrides(r),
@@ -200,6 +225,7 @@ def load(file):
         metrics=_metrics(r),
         reference_integrator=_reference(r),
         profiles=_profiles(r),
+        relmse_reject=r.fraction("relmse_reject", 0.5, 0.0),
     )
     if exp.baseline not in exp.techniques:
         r.fail("must name one of the techniques", "baseline")
@@ -227,6 +253,10 @@ def _overrides(r):
     for pointer in value:
         if not pointer.startswith("/"):
             r.fail(f"keys are JSON pointers starting with '/', got \"{pointer}\"", "set")
+        owned = [p for p in HARNESS_OWNED if pointer == p or pointer.startswith(p + "/")]
+        if owned:
+            r.fail(f"{pointer} is set by the harness for each render (techniques, budgets, "
+                   "seeds, profiles' resolution)", "set")
     return value
 
 
@@ -243,6 +273,8 @@ def _techniques(r):
         t.fail("at least one technique is required")
     out = {}
     for name in t.value:
+        if not NAME_PATTERN.fullmatch(name):
+            t.fail("technique names use only letters, digits, '_' and '-'", name)
         tr = t.child(name)
         out[name] = Technique(name, tr.string("label", required=False, default=name),
                               _integrator(tr, "integrator"))
@@ -326,22 +358,29 @@ def _paper(r, exp):
         pointer = "/paper" + (f"/{i}" if isinstance(value, list) else "")
         e = _Reader(r.file, entry, pointer)
         metric = e.string("metric")
-        if metric not in METRICS:
-            e.fail(f"unknown metric \"{metric}\"", "metric")
+        if metric not in exp.metrics:
+            e.fail(f"\"{metric}\" is not one of the experiment's metrics", "metric")
+        spp = e.integer("spp", 1)
+        for profile in exp.profiles.values():
+            if spp not in profile.spp:
+                e.fail(f"the {profile.name} profile's spp budgets must include the paper's",
+                       "spp")
         values = e.child("values")
         for name in values.value:
             if name not in exp.techniques:
                 values.fail("not one of the techniques", name)
             values.positive(name)
         values.finish()
-        out.append(PaperNumbers(e.string("source"), metric, e.integer("spp", 1),
-                                dict(values.value)))
+        out.append(PaperNumbers(e.string("source"), metric, spp, dict(values.value)))
         e.finish()
     return out
 
 
 def _thresholds(r, exp):
     t = r.child("thresholds")
+    if METRICS[exp.primary_metric] or exp.primary_metric in EFFICIENCY_OF:
+        t.fail(f"thresholds need an error as the primary metric, not {exp.primary_metric}: an "
+               "efficiency depends on the machine's speed, so a check on it could flake")
     profile = t.string("profile")
     if profile not in PROFILES:
         t.fail(f"expected one of {', '.join(PROFILES)}", "profile")

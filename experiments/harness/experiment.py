@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import config, jobs, paths, provenance, references, renders, stats
+from .errors import HarnessFailure
 
 
 @dataclass(frozen=True)
@@ -22,20 +23,28 @@ class Run:
     seed: int
 
     def file_name(self):
-        budget = f"{self.budget:g}{'spp' if self.kind == 'spp' else 's'}"
+        budget = f"{self.budget:.12g}{'spp' if self.kind == 'spp' else 's'}"
         return Path(self.technique) / f"{budget}_seed{self.seed}.exr"
 
 
 def expand(exp, profile, only=None):
-    """Every run of the profile, or only those whose (technique, kind, budget) is in `only`."""
+    """Every run of the profile, or only those whose (technique, kind, budget) is in `only`.
+    Interleaved (seed, then budget, then technique innermost) so that the techniques share
+    the machine's load pattern: consecutive runs of one budget differ only in technique."""
+    budgets = [("spp", s) for s in profile.spp] + [("time", s) for s in profile.seconds]
     runs = []
-    for technique in exp.techniques:
-        budgets = [("spp", s) for s in profile.spp] + [("time", s) for s in profile.seconds]
+    for seed in range(profile.seeds):
         for kind, budget in budgets:
-            if only is not None and (technique, kind, budget) not in only:
-                continue
-            runs += [Run(technique, kind, budget, seed) for seed in range(profile.seeds)]
+            for technique in exp.techniques:
+                if only is None or (technique, kind, budget) in only:
+                    runs.append(Run(technique, kind, budget, seed))
     return runs
+
+
+def parallel_jobs(profile, requested):
+    """Renders at once: never more threads in all than cores, so every render has its
+    threads' cores to itself and an equal-time budget means equal compute."""
+    return max(1, min(requested, jobs.default_jobs() // profile.threads_per_job))
 
 
 def _estimated_cost(run, profile):
@@ -59,7 +68,9 @@ def execute(exp, profile, runs, out_dir, reference_file, workers):
             else:
                 renders.render(exp, profile, integrator, out, run.seed, seconds=run.budget,
                                threads=profile.threads_per_job)
-            m = renders.compare(out, reference_file)
+            m = renders.compare(out, reference_file, exp.relmse_reject)
+            if "time" not in m or "spp" not in m:
+                raise HarnessFailure(f"{out}: no renderer.renderTime or renderer.spp metadata")
             return {"technique": run.technique, "kind": run.kind, "budget": run.budget,
                     "seed": run.seed, "spp": m["spp"], "time": m["time"],
                     "file": paths.relative(out),
@@ -67,19 +78,60 @@ def execute(exp, profile, runs, out_dir, reference_file, workers):
         return work
 
     costs = [_estimated_cost(r, profile) for r in runs]
-    return jobs.run_parallel(f"{exp.id} {profile.name}", [job(r) for r in runs], costs, workers)
+    return jobs.run_parallel(f"{exp.id} {profile.name}", [job(r) for r in runs], costs,
+                             parallel_jobs(profile, workers))
 
 
 def _groups(records):
+    """(technique, kind, budget) -> that budget's records, ordered by seed."""
     groups = {}
-    for r in records:
+    for r in sorted(records, key=lambda r: r["seed"]):
         groups.setdefault((r["technique"], r["kind"], r["budget"]), []).append(r)
     return groups
 
 
-def _metric_estimate(group, metric):
+def _column(group, metric):
     values = [r["metrics"][metric] for r in group]
-    return None if any(v is None for v in values) else stats.estimate(values)
+    return None if any(v is None for v in values) else values
+
+
+def _efficiency_columns(group, metric):
+    """The (time, error) columns of efficiency 1/(T·error)."""
+    error = _column(group, config.EFFICIENCY_OF[metric])
+    return None if error is None else [[r["time"] for r in group], error]
+
+
+def _metric_summary(group, metric):
+    """Mean and interval of a metric over seeds. An efficiency is 1/(mean T · mean error)
+    with a paired delta-method interval, not a mean of per-seed efficiencies."""
+    if metric in config.EFFICIENCY_OF:
+        columns = _efficiency_columns(group, metric)
+        if columns is None or min(sum(c) for c in columns) <= 0:
+            return None
+        e = stats.mean_power_product(columns, (-1, -1))
+        return {"mean": e.value, "stderr": e.stderr, "ci95": list(e.ci95), "n": len(group),
+                "estimator": "1/(mean time x mean error)"}
+    values = _column(group, metric)
+    return None if values is None else stats.estimate(values).to_json()
+
+
+def _gain(base_group, group, metric):
+    """The technique's gain over the baseline at one budget, paired by seed; None when it is
+    undefined (a zero error, a missing metric)."""
+    if [r["seed"] for r in base_group] != [r["seed"] for r in group]:
+        raise ValueError("the baseline and the technique were run with different seeds")
+    try:
+        if metric in config.EFFICIENCY_OF:
+            b, t = _efficiency_columns(base_group, metric), _efficiency_columns(group, metric)
+            if b is None or t is None:
+                return None
+            return stats.mean_power_product(b + t, (1, 1, -1, -1)).to_json()
+        b, t = _column(base_group, metric), _column(group, metric)
+        if b is None or t is None:
+            return None
+        return stats.gain(b, t, config.METRICS[metric]).to_json()
+    except ValueError:  # a zero mean
+        return None
 
 
 def summarise(exp, records):
@@ -88,20 +140,16 @@ def summarise(exp, records):
     groups = _groups(records)
     summary = []
     for (technique, kind, budget), group in groups.items():
-        estimates = {m: _metric_estimate(group, m) for m in exp.metrics}
         entry = {
             "technique": technique, "kind": kind, "budget": budget,
             "spp": stats.estimate([r["spp"] for r in group]).to_json(),
             "time": stats.estimate([r["time"] for r in group]).to_json(),
-            "metrics": {m: e.to_json() if e else None for m, e in estimates.items()},
+            "metrics": {m: _metric_summary(group, m) for m in exp.metrics},
             "gain": {},
         }
         base_group = groups.get((exp.baseline, kind, budget))
         if technique != exp.baseline and base_group:
-            for m, e in estimates.items():
-                b = _metric_estimate(base_group, m)
-                if e and b and e.mean > 0 and b.mean > 0:
-                    entry["gain"][m] = stats.gain(b, e, config.METRICS[m]).to_json()
+            entry["gain"] = {m: _gain(base_group, group, m) for m in exp.metrics}
         summary.append(entry)
     return summary
 
@@ -129,7 +177,7 @@ def run(exp, profile_name, workers):
     entry, reference_file = references.lookup(exp, profile)
     started_at = datetime.datetime.now().astimezone().isoformat(timespec="seconds")
     started = time.monotonic()
-    out_dir = paths.RENDERS / exp.id
+    out_dir = paths.RENDERS / profile.name / exp.id
     shutil.rmtree(out_dir, ignore_errors=True)
     runs = expand(exp, profile)
     records = execute(exp, profile, runs, out_dir, reference_file, workers)
@@ -140,13 +188,14 @@ def run(exp, profile_name, workers):
         "experiment": exp.id,
         "profile": profile.name,
         "description": exp.description,
-        "config": {"file": paths.relative(exp.file), "sha256": exp.text_sha256},
+        "config": {"file": paths.relative(exp.file), "sha256": exp.config_sha256},
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
         "techniques": {t.name: {"label": t.label, "integrator": t.integrator}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
         "metrics": exp.metrics,
+        "relmse_reject": exp.relmse_reject,
         "resolution": list(profile.resolution),
         "seeds": list(range(profile.seeds)),
         "budgets": {"spp": profile.spp, "seconds": profile.seconds},
@@ -164,7 +213,7 @@ def run(exp, profile_name, workers):
             "started": started_at,
             "wall_seconds": round(time.monotonic() - started, 2),
             "machine": provenance.machine(),
-            "parallel_jobs": workers,
+            "parallel_jobs": parallel_jobs(profile, workers),
             "threads_per_job": profile.threads_per_job,
             "command": " ".join(sys.argv),
         },
@@ -172,6 +221,6 @@ def run(exp, profile_name, workers):
         "slopes": fitted,
         "runs": records,
     }
-    out = paths.RESULTS / exp.paper_name / f"{exp.figure}.json"
+    out = paths.results_file(exp, profile.name)
     provenance.write_json_atomically(out, document)
     return out

@@ -30,6 +30,16 @@ def experiment_id(config_path):
     return f"{p.parent.name}/{p.stem}"
 
 
+def suffix(profile_name):
+    """File-name suffix of a profile's outputs: none for quick (the committed set), ".full"
+    for full, so running the full profile never overwrites the quick one."""
+    return "" if profile_name == "quick" else f".{profile_name}"
+
+
+def results_file(exp, profile_name):
+    return RESULTS / exp.paper_name / f"{exp.figure}{suffix(profile_name)}.json"
+
+
 def all_experiment_configs():
     return sorted(CONFIGS.glob("*/*.json"))
 

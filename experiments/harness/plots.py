@@ -116,15 +116,16 @@ def _save(fig, out):
     tmp.replace(out)
 
 
-def write_all():
+def write_all(profile_name):
     written = []
-    for paper, docs in tables.load_results().items():
+    suffix = paths.suffix(profile_name)
+    for paper, docs in tables.load_results(profile_name).items():
         for doc in docs:
             figure = doc["experiment"].split("/")[1]
-            out = paths.PLOTS / paper / f"{figure}_convergence.png"
+            out = paths.PLOTS / paper / f"{figure}_convergence{suffix}.png"
             convergence(doc, out)
             written.append(out)
-            out = paths.PLOTS / paper / f"{figure}_crops.png"
+            out = paths.PLOTS / paper / f"{figure}_crops{suffix}.png"
             if crops(doc, out):
                 written.append(out)
             else:

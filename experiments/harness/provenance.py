@@ -51,4 +51,5 @@ def write_json_atomically(path, value):
                                      suffix=".tmp", delete=False) as f:
         json.dump(value, f, indent=1, sort_keys=False, ensure_ascii=False)
         f.write("\n")
+    os.chmod(f.name, 0o644)  # NamedTemporaryFile creates 0600
     os.replace(f.name, path)

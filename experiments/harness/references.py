@@ -22,12 +22,12 @@ def file_name(exp, profile):
 
 
 def key(exp, profile):
-    """Everything that determines the reference image; a change makes the reference stale."""
+    """What determines the reference image: the scene document it renders (after overrides,
+    with the reference integrator and the profile's resolution; whitespace and comments of
+    the file do not count) and its spp. A change makes the reference stale. Code changes do
+    not: after fixing an integrator, re-render with `make references FORCE=1`."""
     spec = {
-        "scene_file_sha256": hashlib.sha256(exp.scene.read_bytes()).hexdigest(),
-        "set": exp.overrides,
-        "integrator": exp.reference_integrator,
-        "resolution": list(profile.resolution),
+        "scene_document_sha256": renders.check_scene(exp, profile, exp.reference_integrator),
         "spp": profile.reference_spp,
     }
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
@@ -102,6 +102,7 @@ def render_reference(exp, profile):
         "noise_sigma_over_mu": merged["noise_sigma_over_mu"],
         "created": datetime.date.today().isoformat(),
         "git_commit": provenance.git_commit(),
+        "git_dirty": provenance.git_dirty(),
     }
     save_manifest(manifest)
     print(f"[references] {paths.relative(out)}: noise σ/µ {merged['noise_sigma_over_mu']:.3g}",
@@ -118,6 +119,9 @@ def ensure(experiments, profile_name, force=False):
 
 def check_noise(exp, profile, entry, smallest_rmse, record=True):
     """Refuses a too-noisy reference; with record, writes the ratio into the manifest."""
+    if smallest_rmse <= 0:
+        raise HarnessFailure(f"{exp.id}: a render matches the reference exactly (RMSE 0), so "
+                             "the reference's noise cannot be judged against it")
     ratio = entry["noise_rmse"] / smallest_rmse
     if record:
         manifest = load_manifest()

@@ -19,8 +19,11 @@ def scene_args(exp, profile, integrator):
 
 
 def check_scene(exp, profile, integrator):
-    """Validates the scene document a render would use (exit 2 from the renderer -> error)."""
-    jobs.run_command([paths.renderer_binary(), "check", *scene_args(exp, profile, integrator)])
+    """Validates the scene document a render would use (exit 2 from the renderer -> error);
+    returns the document's sha256 (what renders record as renderer.sceneSha256)."""
+    out = jobs.run_command([paths.renderer_binary(), "check",
+                            *scene_args(exp, profile, integrator)])
+    return out.split("scene sha256 ")[1].split()[0]
 
 
 def render(exp, profile, integrator, out, seed, spp=None, seconds=None, threads=1):
@@ -30,10 +33,11 @@ def render(exp, profile, integrator, out, seed, spp=None, seconds=None, threads=
     jobs.run_command(args)
 
 
-def compare(image, reference):
-    """`metrics compare --json` -> dict."""
+def compare(image, reference, relmse_reject=0.0):
+    """`metrics compare --json` -> dict. relmse_reject: the fraction of pixels with the
+    largest relMSE left out of it."""
     return json.loads(jobs.run_command([paths.metrics_binary(), "compare", image, reference,
-                                        "--json"]))
+                                        "--json", "--relmse-reject", repr(relmse_reject)]))
 
 
 def slope(points, scratch_file):

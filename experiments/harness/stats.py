@@ -1,8 +1,10 @@
-"""Statistics over seeds: means with Student-t 95 % intervals, gains over a baseline with
-delta-method intervals, and the verdict against a paper's reported gain."""
+"""Statistics over seeds: means with Student-t 95 % intervals; products of powers of means
+(gains over a baseline, efficiencies 1/(T·Err)) with paired delta-method intervals; the
+verdict against a paper's reported gain."""
 import math
 from dataclasses import dataclass
 
+import numpy as np
 from scipy import stats as scipy_stats
 
 CONFIDENCE = 0.95
@@ -51,7 +53,8 @@ def estimate(values):
 
 @dataclass
 class Gain:
-    """How many times better a technique is than the baseline (> 1: better)."""
+    """A product of powers of means, e.g. how many times better a technique is than the
+    baseline (> 1: better). stderr and ci95 are on the value's scale."""
     value: float
     stderr: float
     ci95: tuple
@@ -60,18 +63,36 @@ class Gain:
         return {"value": self.value, "stderr": self.stderr, "ci95": list(self.ci95)}
 
 
-def gain(baseline, technique, higher_is_better):
-    """Ratio of means, oriented so that > 1 means the technique is better. The interval is
-    the delta method on log(ratio): var = (sd_b/mean_b)^2/n_b + (sd_t/mean_t)^2/n_t, with the
-    t quantile of the smaller sample (conservative). Seeds are shared between techniques
-    (common random numbers), so positively correlated errors make this wider, not narrower,
-    than a paired interval."""
-    num, den = (technique, baseline) if higher_is_better else (baseline, technique)
-    value = num.mean / den.mean
-    log_var = (num.sd / num.mean) ** 2 / num.n + (den.sd / den.mean) ** 2 / den.n
-    log_se = math.sqrt(log_var)
-    t = t_quantile(min(num.n, den.n))
+def mean_power_product(columns, powers):
+    """Π mean(column_i)^power_i over paired samples (row k of every column comes from the
+    same seed), with a delta-method interval on the log scale:
+    var(log value) = Σ_ij p_i p_j cov(c_i, c_j) / (n · mean_i · mean_j),
+    using the sample covariance, so correlation between the columns (shared seeds, or the
+    time and error of one render) is accounted for. A ratio of means rather than a mean of
+    per-seed ratios, which Jensen's inequality would bias upwards."""
+    x = np.array(columns, dtype=float)
+    n = x.shape[1]
+    if n < 2:
+        raise ValueError("an interval needs at least two seeds")
+    means = x.mean(axis=1)
+    if np.any(means <= 0):
+        raise ValueError("a product of powers of means needs positive means")
+    p = np.array(powers, dtype=float)
+    scaled = p / means
+    log_var = float(scaled @ np.cov(x, ddof=1).reshape(len(p), len(p)) @ scaled) / n
+    log_se = math.sqrt(max(log_var, 0.0))
+    value = float(np.prod(means ** p))
+    t = t_quantile(n)
     return Gain(value, value * log_se, (value * math.exp(-t * log_se), value * math.exp(t * log_se)))
+
+
+def gain(baseline, technique, higher_is_better):
+    """Ratio of the mean metric of the baseline and of the technique over the same seeds,
+    oriented so that > 1 means the technique is better."""
+    if len(baseline) != len(technique):
+        raise ValueError("a paired gain needs the same seeds for both techniques")
+    powers = (-1, 1) if higher_is_better else (1, -1)
+    return mean_power_product([baseline, technique], powers)
 
 
 def paper_gain(values, baseline, technique, higher_is_better):
@@ -82,11 +103,17 @@ def paper_gain(values, baseline, technique, higher_is_better):
 
 
 def verdict(ours, paper):
-    """'reproduced' when our gain is within REPRODUCED_FACTOR of the paper's or the paper's
-    gain lies inside our 95 % interval; otherwise 'weaker' or 'stronger'."""
+    """'reproduced' when our gain is within REPRODUCED_FACTOR of the paper's; 'weaker' or
+    'stronger' when our whole 95 % interval lies below or above that band; 'inconclusive'
+    when the point is outside the band but the interval reaches into it."""
     if paper is None or ours is None:
         return "—"
+    band = (paper / REPRODUCED_FACTOR, paper * REPRODUCED_FACTOR)
     lo, hi = ours.ci95
-    if paper / REPRODUCED_FACTOR <= ours.value <= paper * REPRODUCED_FACTOR or lo <= paper <= hi:
+    if band[0] <= ours.value <= band[1]:
         return "reproduced"
-    return "weaker" if ours.value < paper else "stronger"
+    if hi < band[0]:
+        return "weaker"
+    if lo > band[1]:
+        return "stronger"
+    return "inconclusive"

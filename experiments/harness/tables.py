@@ -3,57 +3,74 @@ convergence slopes), CSV (every number) and LaTeX (the main table, booktabs)."""
 import csv
 import io
 import json
+import sys
 
 from . import config, paths, stats
+from .errors import ConfigError
 
 METRIC_NAMES = {"sigma_over_mu": "σ/µ", "rmse": "RMSE", "mse": "MSE", "relmse": "relMSE",
                 "tvi_err": "Err (tvi)", "p_eff": "P-Eff", "mse_eff": "1/(T·MSE)"}
 
 
-def load_results():
-    """{paper: [results document, ...]} in figure order."""
+def load_results(profile_name):
+    """{paper: [results document, ...]} of one profile, in figure order."""
     by_paper = {}
-    for file in sorted(paths.RESULTS.glob("*/*.json")):
+    for file in sorted(paths.RESULTS.glob(f"*/*{paths.suffix(profile_name)}.json")):
         if file.parent.name in ("tables", "plots", "renders", "previews"):
             continue
         doc = json.loads(file.read_text())
-        by_paper.setdefault(file.parent.name, []).append(doc)
+        if doc["profile"] == profile_name:
+            by_paper.setdefault(file.parent.name, []).append(doc)
     return by_paper
 
 
 def _rows(doc):
-    """The table's rows: each technique (baseline first) at the table's equal-sample budget
-    and, when the profile has one, its equal-time budget."""
+    """The table's rows: each technique (baseline first) at the equal-sample budget of the
+    paper's number for the primary metric (else the table's), and, when the profile has one,
+    at the table's equal-time budget."""
     techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
     summary = {(s["technique"], s["kind"], s["budget"]): s for s in doc["summary"]}
+    paper = _paper_entry(doc, doc["metrics"][0])
+    spp = paper["spp"] if paper else doc["table"]["spp"]
     rows = []
     for t in techniques:
-        rows.append(summary[(t, "spp", doc["table"]["spp"])])
+        rows.append(summary[(t, "spp", spp)])
         if doc["table"]["seconds"] is not None:
             rows.append(summary[(t, "time", doc["table"]["seconds"])])
     return rows
 
 
-def _paper_entry(doc, metric):
+def _paper_entry(doc, metric, spp=None):
+    """The paper's numbers for a metric (at an equal-sample budget, when given)."""
     for p in doc["paper"]:
-        if p["metric"] == metric:
+        if p["metric"] == metric and (spp is None or p["spp"] == spp):
             return p
     return None
+
+
+def _paper_cells(doc, row, metric):
+    """(paper's value, its spp, paper's gain, verdict) for a row, where the paper reports the
+    metric at the row's equal-sample budget; Nones and '—' elsewhere."""
+    paper = _paper_entry(doc, metric, row["budget"]) if row["kind"] == "spp" else None
+    if paper is None:
+        return None, None, None, "—"
+    higher = config.METRICS[metric]
+    value = paper["values"].get(row["technique"])
+    if row["technique"] == doc["baseline"]:
+        return value, paper["spp"], None, "—"
+    paper_gain = stats.paper_gain(paper["values"], doc["baseline"], row["technique"], higher)
+    ours = _gain_estimate(row["gain"].get(metric))
+    return value, paper["spp"], paper_gain, stats.verdict(ours, paper_gain)
 
 
 def _gain_estimate(g):
     return stats.Gain(g["value"], g["stderr"], tuple(g["ci95"])) if g else None
 
 
-def _row_values(doc, row):
-    metric = doc["metrics"][0]
-    higher = config.METRICS[metric]
+def _row_values(doc, row, metric=None):
+    metric = metric or doc["metrics"][0]
     m = row["metrics"][metric]
-    paper = _paper_entry(doc, metric)
-    paper_value = paper["values"].get(row["technique"]) if paper and row["kind"] == "spp" else None
-    paper_gain = (stats.paper_gain(paper["values"], doc["baseline"], row["technique"], higher)
-                  if paper and row["kind"] == "spp" and row["technique"] != doc["baseline"]
-                  else None)
+    paper_value, paper_spp, paper_gain, verdict = _paper_cells(doc, row, metric)
     gain = _gain_estimate(row["gain"].get(metric))
     return {
         "figure": doc["experiment"].split("/")[1],
@@ -66,10 +83,10 @@ def _row_values(doc, row):
         "mean": m["mean"] if m else None,
         "half_width": (m["ci95"][1] - m["mean"]) if m else None,
         "paper_value": paper_value,
-        "paper_spp": paper["spp"] if paper else None,
+        "paper_spp": paper_spp,
         "gain": gain,
         "paper_gain": paper_gain,
-        "verdict": stats.verdict(gain, paper_gain) if row["technique"] != doc["baseline"] else "—",
+        "verdict": verdict,
     }
 
 
@@ -81,6 +98,14 @@ def _gain_text(g):
     return "—" if g is None else f"×{g.value:.3g} [{g.ci95[0]:.3g}, {g.ci95[1]:.3g}]"
 
 
+def _comparison_cells(v):
+    """The cells shared by both Markdown tables, from `_row_values`."""
+    paper = "—" if v["paper_value"] is None else f"{v['paper_value']:.4g} ({v['paper_spp']} spp)"
+    paper_gain = "—" if v["paper_gain"] is None else f"×{v['paper_gain']:.3g}"
+    ours = "—" if v["mean"] is None else f"{_fmt(v['mean'])} ± {_fmt(v['half_width'], 2)}"
+    return f"{ours} | {paper} | {_gain_text(v['gain'])} | {paper_gain} | {v['verdict']} |"
+
+
 def _main_table(docs):
     head = ("| figure | technique | budget | spp | time (s) | metric | ours (mean ± 95 %) | paper "
             "| gain over baseline (95 %) | paper's gain | verdict |")
@@ -88,29 +113,21 @@ def _main_table(docs):
     for doc in docs:
         for row in _rows(doc):
             v = _row_values(doc, row)
-            paper = ("—" if v["paper_value"] is None
-                     else f"{v['paper_value']:.4g} ({v['paper_spp']} spp)")
-            paper_gain = "—" if v["paper_gain"] is None else f"×{v['paper_gain']:.3g}"
-            lines.append(
-                f"| {v['figure']} | {v['technique']} | {v['budget']} | {v['spp']:.4g} | "
-                f"{v['time']:.3g} | {METRIC_NAMES[v['metric']]} | "
-                f"{_fmt(v['mean'])} ± {_fmt(v['half_width'], 2)} | {paper} | "
-                f"{_gain_text(v['gain'])} | {paper_gain} | {v['verdict']} |")
+            lines.append(f"| {v['figure']} | {v['technique']} | {v['budget']} | {v['spp']:.4g} | "
+                         f"{v['time']:.3g} | {METRIC_NAMES[v['metric']]} | "
+                         + _comparison_cells(v))
     return lines
 
 
 def _secondary_table(docs):
-    lines = ["| figure | technique | budget | metric | mean ± 95 % | gain over baseline |",
-             "|---|---|---|---|---|---|"]
+    lines = ["| figure | technique | budget | metric | ours (mean ± 95 %) | paper | gain over "
+             "baseline (95 %) | paper's gain | verdict |", "|" + "---|" * 9]
     for doc in docs:
         for row in _rows(doc):
             for metric in doc["metrics"][1:]:
-                m = row["metrics"][metric]
-                budget = f"{row['budget']:g} {'spp' if row['kind'] == 'spp' else 's'}"
-                value = "—" if m is None else f"{m['mean']:.4g} ± {m['ci95'][1] - m['mean']:.2g}"
-                lines.append(f"| {doc['experiment'].split('/')[1]} | {row['technique']} | "
-                             f"{budget} | {METRIC_NAMES[metric]} | {value} | "
-                             f"{_gain_text(_gain_estimate(row['gain'].get(metric)))} |")
+                v = _row_values(doc, row, metric)
+                lines.append(f"| {v['figure']} | {v['technique']} | {v['budget']} | "
+                             f"{METRIC_NAMES[metric]} | " + _comparison_cells(v))
     return lines
 
 
@@ -129,9 +146,22 @@ def _slope_table(docs):
     return lines
 
 
+def config_changed(doc):
+    """True when the experiment's config (thresholds aside) differs from the one that made
+    these results, or is gone."""
+    try:
+        return config.load(paths.ROOT / doc["config"]["file"]).config_sha256 != doc["config"][
+            "sha256"]
+    except ConfigError:
+        return True
+
+
 def _experiment_notes(docs):
     lines = []
     for doc in docs:
+        if config_changed(doc):
+            lines.append(f"- **{doc['experiment'].split('/')[1]}: its config has changed since "
+                         "this run; run it again.**")
         ref = doc["reference"]
         prov = doc["provenance"]
         lines.append(
@@ -171,24 +201,18 @@ def csv_text(docs):
                 "ci95_lo", "ci95_hi", "sd", "seeds", "spp_mean", "time_mean", "gain",
                 "gain_ci95_lo", "gain_ci95_hi", "paper_value", "paper_gain", "verdict"])
     for doc in docs:
-        primary = doc["metrics"][0]
-        paper = _paper_entry(doc, primary)
         for s in doc["summary"]:
             for metric in doc["metrics"]:
                 m, g = s["metrics"][metric], s["gain"].get(metric)
-                is_paper_row = metric == primary and paper and s["kind"] == "spp"
-                paper_value = paper["values"].get(s["technique"]) if is_paper_row else None
-                paper_gain = (stats.paper_gain(paper["values"], doc["baseline"], s["technique"],
-                                               config.METRICS[metric]) if is_paper_row else None)
-                verdict = (stats.verdict(_gain_estimate(g), paper_gain)
-                           if is_paper_row and s["technique"] != doc["baseline"] else "")
+                paper_value, _, paper_gain, verdict = _paper_cells(doc, s, metric)
                 w.writerow([doc["experiment"], doc["profile"], s["technique"], s["kind"],
-                            s["budget"], metric, *(m and [m["mean"], *m["ci95"], m["sd"], m["n"]]
-                                                   or [""] * 5),
+                            s["budget"], metric,
+                            *(m and [m["mean"], *m["ci95"], m.get("sd", ""), m["n"]] or [""] * 5),
                             s["spp"]["mean"], s["time"]["mean"],
                             *(g and [g["value"], *g["ci95"]] or [""] * 3),
                             "" if paper_value is None else paper_value,
-                            "" if paper_gain is None else paper_gain, verdict])
+                            "" if paper_gain is None else paper_gain,
+                            "" if verdict == "—" else verdict])
     return out.getvalue()
 
 
@@ -216,12 +240,16 @@ def latex(paper, docs):
     return "\n".join(lines).replace("—", "--") + "\n"
 
 
-def write_all():
+def write_all(profile_name):
     written = []
-    for paper, docs in load_results().items():
+    for paper, docs in load_results(profile_name).items():
+        for doc in docs:
+            if config_changed(doc):
+                print(f"warning: {doc['experiment']}: the config has changed since these "
+                      "results were made; the tables say so", file=sys.stderr)
         for ext, text in (("md", markdown(paper, docs)), ("csv", csv_text(docs)),
                           ("tex", latex(paper, docs))):
-            out = paths.TABLES / f"{paper}.{ext}"
+            out = paths.TABLES / f"{paper}{paths.suffix(profile_name)}.{ext}"
             out.parent.mkdir(parents=True, exist_ok=True)
             _write_text_atomically(out, text)
             written.append(out)

@@ -189,9 +189,12 @@ int runRenderCommand(const RenderCommandOptions& o) {
 
     const RenderSettings& settings = p.loaded.render;
     if (o.checkOnly) {
-        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\n", o.scene.c_str(),
-                    p.loaded.integrator->name().c_str(), settings.width, settings.height,
-                    settings.spp, featureList(p.loaded.scene->features()).c_str());
+        // The document hash is what a render records as renderer.sceneSha256: it identifies
+        // the scene after overrides, independent of the file's whitespace and comments.
+        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n",
+                    o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width,
+                    settings.height, settings.spp, featureList(p.loaded.scene->features()).c_str(),
+                    sha256Hex(p.document.dump()).c_str());
         return 0;
     }
     RenderOptions options;

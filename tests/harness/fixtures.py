@@ -38,11 +38,14 @@ def valid():
 
 
 def load_config(document, figure="figure"):
-    """Writes `document` (a dict, or raw text) as <tmp>/paper/<figure>.json and loads it."""
+    """Writes `document` (a dict, or raw text or bytes) as <tmp>/paper/<figure>.json and loads it."""
     directory = Path(tempfile.mkdtemp()) / "paper"
     directory.mkdir()
     file = directory / f"{figure}.json"
-    file.write_text(document if isinstance(document, str) else json.dumps(document))
+    if isinstance(document, bytes):
+        file.write_bytes(document)
+    else:
+        file.write_text(document if isinstance(document, str) else json.dumps(document))
     return config.load(file)
 
 

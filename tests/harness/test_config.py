@@ -42,6 +42,9 @@ class BadConfigTest(unittest.TestCase):
     def test_non_json_constants(self):
         self.assertRejects('{"description": Infinity}', "", "Infinity is not JSON")
 
+    def test_not_utf8(self):
+        self.assertRejects(b'{"description": "\xff"}', "", "not UTF-8")
+
     def test_duplicate_key(self):
         self.assertRejects('{"description": "a", "description": "b"}', "", "duplicate key")
 
@@ -84,6 +87,20 @@ class BadConfigTest(unittest.TestCase):
              "spp budgets"),
             (lambda d: d["thresholds"]["checks"][0].update(technique="base"),
              "/thresholds/checks/0/min_gain", "baseline"),
+            (lambda d: d.update(scene=None), "/scene", "non-empty string"),
+            (lambda d: d["profiles"]["quick"].update(seeds=None), "/profiles/quick/seeds",
+             ">= 5"),
+            (lambda d: d["paper"]["values"].update(base=None), "/paper/values/base", "positive"),
+            (lambda d: d.update(set={"/render/spp": 4}), "/set", "set by the harness"),
+            (lambda d: d.update(set={"/integrator/type": "path"}), "/set", "set by the harness"),
+            (lambda d: d["techniques"].update({"bad name": {"integrator": {"type": "path"}}}),
+             "/techniques/bad name", "letters, digits"),
+            (lambda d: d["paper"].update(metric="rmse"), "/paper/metric",
+             "not one of the experiment's metrics"),
+            (lambda d: d["paper"].update(spp=8), "/paper/spp", "must include the paper's"),
+            (lambda d: d.update(metrics=["p_eff", "sigma_over_mu"]), "/thresholds",
+             "error as the primary metric"),
+            (lambda d: d.update(relmse_reject=0.6), "/relmse_reject", "[0, 0.5)"),
             (lambda d: d["thresholds"]["checks"][0].update(max_error=0),
              "/thresholds/checks/0/max_error", "positive finite"),
         ]

@@ -21,20 +21,35 @@ class EstimateTest(unittest.TestCase):
 
 
 class GainTest(unittest.TestCase):
-    def test_error_ratio_and_delta_method_interval(self):
-        base = stats.Estimate(mean=2.0, sd=0.2, n=5)  # relative sd 0.1
-        tech = stats.Estimate(mean=0.5, sd=0.1, n=5)  # relative sd 0.2
-        g = stats.gain(base, tech, higher_is_better=False)
+    def test_paired_ratio_of_means_and_delta_method_interval(self):
+        # means 2 and 0.5 -> gain 4. Sample (co)variances: var_b = 0.02, var_t = 0.005,
+        # cov = 0.01. With p = (1, -1): scaled = (1/2, -1/0.5) = (0.5, -2), so
+        # var(log gain) = (0.25·0.02 + 4·0.005 - 2·0.5·2·0.01) / 2 = 0.0025, s.e. 0.05
+        # (unpaired it would be sqrt(0.0125) = 0.112: the shared seeds' correlation counts).
+        g = stats.gain([1.9, 2.1], [0.45, 0.55], higher_is_better=False)
         self.assertAlmostEqual(g.value, 4.0)
-        log_se = math.sqrt(0.1 ** 2 / 5 + 0.2 ** 2 / 5)  # 0.1
-        self.assertAlmostEqual(g.stderr, 4.0 * log_se)
-        t = stats.t_quantile(5)  # 2.776445
-        self.assertAlmostEqual(g.ci95[0], 4.0 * math.exp(-t * log_se))
-        self.assertAlmostEqual(g.ci95[1], 4.0 * math.exp(t * log_se))
+        self.assertAlmostEqual(g.stderr, 4.0 * 0.05)
+        t = stats.t_quantile(2)  # 12.7062
+        self.assertAlmostEqual(g.ci95[0], 4.0 * math.exp(-t * 0.05))
+        self.assertAlmostEqual(g.ci95[1], 4.0 * math.exp(t * 0.05))
+
+    def test_identical_techniques_have_gain_one_without_spread(self):
+        g = stats.gain([0.3, 0.5, 0.4], [0.3, 0.5, 0.4], False)
+        self.assertAlmostEqual(g.value, 1.0)
+        self.assertAlmostEqual(g.stderr, 0.0)
 
     def test_efficiency_ratio_is_technique_over_baseline(self):
-        g = stats.gain(stats.Estimate(0.05, 0.0, 5), stats.Estimate(0.15, 0.0, 5), True)
+        g = stats.gain([0.05, 0.05], [0.15, 0.15], True)
         self.assertAlmostEqual(g.value, 3.0)
+
+    def test_efficiency_is_a_ratio_of_means(self):
+        # T = (1, 2), Err = (1, 1): 1/(mean T · mean Err) = 1/1.5, not mean(1/(T·Err)) = 0.75.
+        e = stats.mean_power_product([[1.0, 2.0], [1.0, 1.0]], (-1, -1))
+        self.assertAlmostEqual(e.value, 1 / 1.5)
+
+    def test_unpaired_lengths_are_refused(self):
+        with self.assertRaises(ValueError):
+            stats.gain([1, 2, 3], [1, 2], False)
 
     def test_paper_gain_orientation(self):
         values = {"pt": 1.045, "tais": 0.207}
@@ -51,8 +66,9 @@ class VerdictTest(unittest.TestCase):
     def test_within_factor_is_reproduced(self):
         self.assertEqual(stats.verdict(self.gain(4.1, 4.0, 4.2), 5.0), "reproduced")  # 5/1.25=4
 
-    def test_paper_inside_interval_is_reproduced(self):
-        self.assertEqual(stats.verdict(self.gain(2.0, 1.0, 6.0), 5.0), "reproduced")
+    def test_point_outside_band_with_interval_reaching_in_is_inconclusive(self):
+        self.assertEqual(stats.verdict(self.gain(2.0, 1.0, 6.0), 5.0), "inconclusive")
+        self.assertEqual(stats.verdict(self.gain(7.0, 6.0, 9.0), 5.0), "inconclusive")
 
     def test_weaker_and_stronger(self):
         self.assertEqual(stats.verdict(self.gain(3.9, 3.8, 3.95), 5.0), "weaker")

@@ -11,9 +11,10 @@ BETTER = [0.2, 0.22, 0.18, 0.21, 0.19]
 
 
 def document():
-    g = stats.gain(stats.estimate(BASE), stats.estimate(BETTER), False).to_json()
+    g = stats.gain(BASE, BETTER, False).to_json()
     return {
         "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
+        "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
         "techniques": {"base": {}, "better": {}}, "baseline": "base",
         "metrics": ["sigma_over_mu", "p_eff"], "resolution": [8, 8], "seeds": [0, 1, 2, 3, 4],
         "table": {"spp": 16, "seconds": None},
@@ -40,6 +41,10 @@ class TablesTest(unittest.TestCase):
         self.assertIn("reproduced", row)
         self.assertIn("0.207 (16 spp)", row)
         self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | — | — | 10 |", text)
+
+    def test_results_of_a_changed_config_are_flagged(self):
+        self.assertIn("its config has changed since this run", tables.markdown("paper",
+                                                                               [document()]))
 
     def test_csv_has_every_metric_of_every_budget(self):
         rows = list(csv.DictReader(io.StringIO(tables.csv_text([document()]))))

@@ -1,9 +1,11 @@
 """CI thresholds: the check passes at the stored limits and fails once a limit is tightened
 below the measurement (so the CI check can fail); calibration is mean + 4 sd, gain - 4 s.e."""
+import math
 import unittest
 
 from fixtures import load_config, summary_entry, valid
 from harness import stats, thresholds
+from harness.errors import HarnessFailure
 
 # Seeds' σ/µ: baseline mean 0.6, technique mean 0.25 -> gain 2.4.
 BASE = [0.58, 0.60, 0.62, 0.59, 0.61]
@@ -11,7 +13,7 @@ BETTER = [0.24, 0.25, 0.26, 0.245, 0.255]
 
 
 def summary():
-    g = stats.gain(stats.estimate(BASE), stats.estimate(BETTER), False).to_json()
+    g = stats.gain(BASE, BETTER, False).to_json()
     return [summary_entry("base", "spp", 16, BASE), summary_entry("better", "spp", 16, BETTER, g)]
 
 
@@ -35,17 +37,38 @@ class EvaluateTest(unittest.TestCase):
 
 
 class CalibrateTest(unittest.TestCase):
+    def test_keeps_a_minimum_margin_from_a_noiseless_measurement(self):
+        exp = load_config(valid())
+        same = [0.25] * 5
+        rows = [summary_entry("base", "spp", 16, [0.5] * 5),
+                summary_entry("better", "spp", 16, same,
+                              stats.gain([0.5] * 5, same, False).to_json())]
+        results = {"summary": rows, "seeds": list(range(5)), "profile": "quick",
+                   "config": {"sha256": exp.config_sha256},
+                   "provenance": {"git_commit": None, "started": "2026-11-22"}}
+        better = thresholds.calibrate(exp, results, [16])["checks"][1]
+        self.assertEqual(better["max_error"], 0.255)  # 0.25 · 1.02
+        self.assertEqual(better["min_gain"], 1.96)  # 2 / 1.02 = 1.9608, rounded down
+
+    def test_refuses_results_of_another_config(self):
+        results = {"config": {"sha256": "0" * 64}}
+        with self.assertRaises(HarnessFailure):
+            thresholds.calibrate(load_config(valid()), results, [16])
+
     def test_mean_plus_four_sd_and_gain_minus_four_stderr(self):
+        exp = load_config(valid())
         results = {"summary": summary(), "seeds": list(range(5)), "profile": "quick",
+                   "config": {"sha256": exp.config_sha256},
                    "provenance": {"git_commit": "0123456789abc", "started": "2026-11-22T10:00"}}
-        block = thresholds.calibrate(load_config(valid()), results, [16])
+        block = thresholds.calibrate(exp, results, [16])
         better = [c for c in block["checks"] if c["technique"] == "better"][0]
         e = stats.estimate(BETTER)
         self.assertGreaterEqual(better["max_error"], e.mean + 4 * e.sd)
         self.assertLess(better["max_error"], e.mean + 4 * e.sd + 0.001)  # rounded up, 3 digits
-        g = stats.gain(stats.estimate(BASE), e, False)
-        self.assertLessEqual(better["min_gain"], g.value - 4 * g.stderr)
-        self.assertGreater(better["min_gain"], g.value - 4 * g.stderr - 0.01)
+        g = stats.gain(BASE, BETTER, False)
+        floor = min(g.value * math.exp(-4 * g.stderr / g.value), g.value / 1.02)
+        self.assertLessEqual(better["min_gain"], floor)
+        self.assertGreater(better["min_gain"], floor - 0.01)
         self.assertIn("mean + 4 sd", block["method"])
         self.assertNotIn("min_gain", [c for c in block["checks"] if c["technique"] == "base"][0])
 
