@@ -96,6 +96,8 @@ def calibrate(exp, results, spps):
             floor = min(g["value"] * math.exp(-SIGMAS * log_se), g["value"] / (1 + MIN_MARGIN))
             check["min_gain"] = _round_down(floor)
         checks.append(check)
+    order = list(exp.techniques)
+    checks.sort(key=lambda c: (order.index(c["technique"]), c["spp"]))
     method = (f"max_error = mean + {SIGMAS} sd of {metric} over the {len(results['seeds'])} "
               f"seeds; min_gain = gain x exp(-{SIGMAS} s.e. of the paired log gain); each at "
               f"least {MIN_MARGIN:.0%} from the measurement; set by `experiments/run.py "
