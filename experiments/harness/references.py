@@ -6,7 +6,6 @@ when that noise is not below a fifth of the smallest error measured against the 
 import datetime
 import hashlib
 import json
-import shutil
 import tempfile
 import time
 from pathlib import Path
