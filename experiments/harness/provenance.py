@@ -1,4 +1,4 @@
-"""Provenance of results (git commit, machine) and atomic JSON output."""
+"""Provenance of results (git commit, machine) and atomic text and JSON output."""
 import hashlib
 import json
 import os
@@ -44,12 +44,16 @@ def sha256_file(path):
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
-def write_json_atomically(path, value):
+def write_text_atomically(path, text):
+    """Writes through a temporary sibling renamed into place: no half-written outputs."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.NamedTemporaryFile("w", dir=path.parent, prefix=f".{path.name}.",
-                                     suffix=".tmp", delete=False) as f:
-        json.dump(value, f, indent=1, sort_keys=False, ensure_ascii=False)
-        f.write("\n")
+                                     suffix=".tmp", delete=False, encoding="utf-8") as f:
+        f.write(text)
     os.chmod(f.name, 0o644)  # NamedTemporaryFile creates 0600
     os.replace(f.name, path)
+
+
+def write_json_atomically(path, value):
+    write_text_atomically(path, json.dumps(value, indent=1, ensure_ascii=False) + "\n")

@@ -5,7 +5,7 @@ import io
 import json
 import sys
 
-from . import config, paths, stats
+from . import config, paths, provenance, stats
 from .errors import ConfigError
 
 METRIC_NAMES = {"sigma_over_mu": "σ/µ", "rmse": "RMSE", "mse": "MSE", "relmse": "relMSE",
@@ -250,13 +250,7 @@ def write_all(profile_name):
         for ext, text in (("md", markdown(paper, docs)), ("csv", csv_text(docs)),
                           ("tex", latex(paper, docs))):
             out = paths.TABLES / f"{paper}{paths.suffix(profile_name)}.{ext}"
-            out.parent.mkdir(parents=True, exist_ok=True)
-            _write_text_atomically(out, text)
+            provenance.write_text_atomically(out, text)
             written.append(out)
     return written
 
-
-def _write_text_atomically(path, text):
-    tmp = path.with_name(f".{path.name}.tmp")
-    tmp.write_text(text)
-    tmp.replace(path)

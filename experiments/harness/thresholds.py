@@ -62,14 +62,10 @@ def format_verdicts(exp, verdicts):
     return "\n".join(lines)
 
 
-def _round_up(x, digits=3):
+def _round(x, direction, digits=3):
+    """x to `digits` significant digits, rounded with `direction` (math.ceil or math.floor)."""
     scale = 10 ** (digits - 1 - math.floor(math.log10(x)))
-    return math.ceil(x * scale) / scale
-
-
-def _round_down(x, digits=3):
-    scale = 10 ** (digits - 1 - math.floor(math.log10(x)))
-    return math.floor(x * scale) / scale
+    return direction(x * scale) / scale
 
 
 def calibrate(exp, results, spps):
@@ -88,13 +84,13 @@ def calibrate(exp, results, spps):
         if s["kind"] != "spp" or s["budget"] not in spps or not e or e["mean"] <= 0:
             continue
         check = {"technique": s["technique"], "spp": int(s["budget"]),
-                 "max_error": _round_up(max(e["mean"] + SIGMAS * e["sd"],
-                                            e["mean"] * (1 + MIN_MARGIN)))}
+                 "max_error": _round(max(e["mean"] + SIGMAS * e["sd"],
+                                       e["mean"] * (1 + MIN_MARGIN)), math.ceil)}
         g = s["gain"].get(metric)
         if g:
             log_se = g["stderr"] / g["value"]
             floor = min(g["value"] * math.exp(-SIGMAS * log_se), g["value"] / (1 + MIN_MARGIN))
-            check["min_gain"] = _round_down(floor)
+            check["min_gain"] = _round(floor, math.floor)
         checks.append(check)
     order = list(exp.techniques)
     checks.sort(key=lambda c: (order.index(c["technique"]), c["spp"]))

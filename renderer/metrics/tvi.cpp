@@ -9,30 +9,31 @@ namespace rr {
 // breakpoints; they are used as published. La ≤ 0 (black, or negative pixel values) has no
 // logarithm and takes the lower plateau, which is the limit as La → 0.
 
-double photopicTvi(double la) {
-    if (!(la > 0)) return std::pow(10.0, -0.72);
+namespace {
+
+// log10 tvi = floor for log10 La <= low; log10 La + highOffset for log10 La >= high;
+// (scale·log10 La + offset)^exponent + floor in between.
+struct TviFit {
+    double low, high, floor, highOffset, scale, offset, exponent;
+};
+
+double fittedTvi(double la, const TviFit& f) {
+    if (!(la > 0)) return std::pow(10.0, f.floor);
     const double x = std::log10(la);
-    double logTvi;
-    if (x <= -2.6)
-        logTvi = -0.72;
-    else if (x >= 1.9)
-        logTvi = x - 1.255;
-    else
-        logTvi = std::pow(0.249 * x + 0.65, 2.7) - 0.72;
+    const double logTvi = x <= f.low    ? f.floor
+                          : x >= f.high ? x + f.highOffset
+                                        : std::pow(f.scale * x + f.offset, f.exponent) + f.floor;
     return std::pow(10.0, logTvi);
 }
 
+}  // namespace
+
+double photopicTvi(double la) {
+    return fittedTvi(la, {-2.6, 1.9, -0.72, -1.255, 0.249, 0.65, 2.7});
+}
+
 double scotopicTvi(double la) {
-    if (!(la > 0)) return std::pow(10.0, -2.86);
-    const double x = std::log10(la);
-    double logTvi;
-    if (x <= -3.94)
-        logTvi = -2.86;
-    else if (x >= -1.44)
-        logTvi = x - 0.395;
-    else
-        logTvi = std::pow(0.405 * x + 1.6, 2.2) - 2.86;
-    return std::pow(10.0, logTvi);
+    return fittedTvi(la, {-3.94, -1.44, -2.86, -0.395, 0.405, 1.6, 2.2});
 }
 
 }  // namespace rr
