@@ -18,7 +18,7 @@ PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
             libembree-dev libtbb-dev libopenimageio-dev libopencv-core-dev python3-imath \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
-            libboost-dev libgtest-dev libgmock-dev
+            libboost-dev libgtest-dev libgmock-dev libstb-dev
 
 .PHONY: deps configure build run render test asan bench assets references experiments tables \
         plots reproduce format clean

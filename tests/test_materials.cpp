@@ -15,6 +15,7 @@
 #include "scene/materials/dielectric.h"
 #include "scene/materials/lambert.h"
 #include "scene/materials/mirror.h"
+#include "support/bsdf_checks.h"
 #include "support/chi2.h"
 #include "support/histograms.h"
 #include "support/test_random.h"
@@ -22,8 +23,9 @@
 namespace rr::test {
 namespace {
 
-// Every χ² run in this file: Lambert at 4 outgoing directions, and 2 negative controls.
-constexpr int kRuns = 6;
+// Every χ² run in this file: Lambert at 4 outgoing directions, 2 negative controls, and
+// Lambert through the shared BSDF checks on the whole sphere and on a zoomed cap.
+constexpr int kRuns = 8;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
 // Every z-test in this file: reflection fraction at 5 incident angles, and 1 negative control.
@@ -110,6 +112,27 @@ TEST(LambertChi2NegativeControl, SamplesRejectUniformHemispherePdf) {
     const LambertRun run =
         lambertChi2(wo, 201, [](const Vec3& wi) { return wi.z > 0 ? 0.5 / M_PI : 0.0; });
     kChi2.expectRejects(run.outcome, "Lambert vs uniform hemisphere");
+}
+
+// The shared checks (support/bsdf_checks.h) on the material whose answer is known, on the
+// whole sphere and zoomed onto a 25° cap around a tilted axis (the rest is one cell).
+TEST(LambertSharedChecks, SamplingFitsOnSphereAndOnZoomedCap) {
+    const Lambert m(Rgb(0.5f, 0.6f, 0.7f));
+    const Vec3 wo = fromAngles(50, 30);
+    const BsdfSamplingRun sphere = sampleBsdf(m, kCtx, wo, 300);
+    EXPECT_EQ(sphere.weightMismatches, 0) << sphere.firstMismatch;
+    EXPECT_EQ(sphere.nonFinite, 0);
+    kChi2.expectFits(sphere.outcome, "Lambert, shared checks, whole sphere");
+    BsdfHistogramLayout cap;
+    cap.axis = fromAngles(40, 100);
+    cap.capDegrees = 25;
+    cap.zCells = 20;
+    cap.phiCells = 24;
+    kChi2.expectFits(sampleBsdf(m, kCtx, wo, 301, 1000000, cap).outcome,
+                     "Lambert, shared checks, 25° cap");
+    const Rgb albedo = directionalAlbedo(m, kCtx, wo, 302);
+    EXPECT_NEAR(albedo.g, 0.6f, 1e-5f);
+    EXPECT_LT(reciprocityError(m, kCtx, 303), 1e-5);
 }
 
 TEST(Lambert, SampleWeightIsEvalOverPdf) {

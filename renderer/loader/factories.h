@@ -15,13 +15,15 @@
 
 namespace rr {
 
-std::unique_ptr<Material> makeMaterial(ObjectReader& json);
+// Material parameters may be textures; image textures are found through `assets`.
+std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& assets);
 
 // Shapes are built in world space: `transform` is applied to their defining points.
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
                                  const AssetResolver& assets);
 
-std::unique_ptr<Light> makeLight(ObjectReader& json);
+// Environment maps are found through `assets`.
+std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets);
 
 std::unique_ptr<Integrator> makeIntegrator(ObjectReader& json, const PathSettings& path);
 

@@ -4,14 +4,14 @@
 
 namespace rr {
 
-std::unique_ptr<Light> makeLight(ObjectReader& json) {
-    static const TypeTable<Light> table{
+std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets) {
+    static const TypeTable<Light, const AssetResolver&> table{
         {"point",
-         [](ObjectReader& j) {
+         [](ObjectReader& j, const AssetResolver&) {
              return std::make_unique<PointLight>(j.getVec3("position"), j.getRgb("intensity"));
          }},
     };
-    return buildByType(json, "light", table);
+    return buildByType(json, "light", table, assets);
 }
 
 }  // namespace rr

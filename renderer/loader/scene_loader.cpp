@@ -197,13 +197,14 @@ CameraSettings readCamera(ObjectReader& j) {
 // Reads the named material table; inline materials in shapes are added as they appear.
 class MaterialCatalog {
   public:
-    MaterialCatalog(const Json* table, const std::string& pointer, SceneBuilder& builder)
-        : builder_(builder) {
+    MaterialCatalog(const Json* table, const std::string& pointer, SceneBuilder& builder,
+                    const AssetResolver& assets)
+        : builder_(builder), assets_(assets) {
         if (!table) return;
         ObjectReader j(*table, pointer);
         for (const auto& item : table->items()) {
             ObjectReader m(j.raw(item.key()), j.pointerTo(item.key()));
-            named_[item.key()] = builder_.addMaterial(makeMaterial(m));
+            named_[item.key()] = builder_.addMaterial(makeMaterial(m, assets_));
         }
         j.finish();
     }
@@ -213,7 +214,7 @@ class MaterialCatalog {
         const Json& ref = shape.raw("material");
         if (ref.is_object()) {
             ObjectReader m(ref, shape.pointerTo("material"));
-            return builder_.addMaterial(makeMaterial(m));
+            return builder_.addMaterial(makeMaterial(m, assets_));
         }
         if (!ref.is_string()) shape.fail("material", "expected a material name or object");
         const auto it = named_.find(ref.get<std::string>());
@@ -225,6 +226,7 @@ class MaterialCatalog {
 
   private:
     SceneBuilder& builder_;
+    const AssetResolver& assets_;
     std::map<std::string, const Material*> named_;
 };
 
@@ -304,7 +306,8 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     }
     builder.setCamera(camera, render.width, render.height);
 
-    MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder);
+    MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder,
+                              assets);
 
     const Json& shapes = root.raw("shapes");
     if (!shapes.is_array()) root.fail("shapes", "expected an array of shapes");
@@ -317,7 +320,7 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         if (!lights->is_array()) root.fail("lights", "expected an array of lights");
         for (size_t i = 0; i < lights->size(); ++i) {
             ObjectReader lj((*lights)[i], root.pointerTo("lights") + "/" + std::to_string(i));
-            builder.addLight(makeLight(lj));
+            builder.addLight(makeLight(lj, assets));
         }
     }
 

@@ -12,6 +12,7 @@
 
 #include "math/rgb.h"
 #include "math/vector.h"
+#include "scene/shading_context.h"
 
 namespace rr {
 
@@ -21,13 +22,6 @@ enum LobeFlags : uint8_t {
     kDiffuse = 1 << 2,
     kGlossy = 1 << 3,
     kSpecular = 1 << 4,
-};
-
-// Where a material is evaluated: texture coordinates and position, for spatially varying
-// parameters (checkerboards, image maps) in later materials.
-struct ShadingContext {
-    Vec2 uv;
-    Vec3 position;
 };
 
 struct BsdfSample {

@@ -1,0 +1,19 @@
+// Material parameters from JSON: a number or [r, g, b] is a constant; an object with a "type"
+// is a texture (see configs/README.md, "Textures"). `range` bounds every value the texture
+// can take, so a texture can never hand a material an impossible parameter.
+#pragma once
+
+#include <string>
+
+#include "loader/asset_resolver.h"
+#include "loader/json_reader.h"
+#include "scene/texture.h"
+
+namespace rr {
+
+TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key, float fallback,
+                                   Range range, const AssetResolver& assets);
+TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key, const Rgb& fallback,
+                               Range range, const AssetResolver& assets);
+
+}  // namespace rr
