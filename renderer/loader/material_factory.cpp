@@ -12,6 +12,13 @@ namespace rr {
 
 namespace {
 
+// Roughness bounds: a lobe of exponent 10^6 is ~0.1° wide, as sharp as any paper scene needs
+// (the two-stage paper's sharpest is 1000); the bounds keep exponents and D far from float
+// overflow (tests/test_microfacet_materials.cpp: SmallestAllowedRoughnessStillSamples).
+const Range kRoughnessRange = Range::closed(1e-6, 1);  // exponent = 1/roughness ≤ 10^6
+const Range kExponentRange = Range::closed(0, 1e6);
+const Range kBeckmannRange = Range::closed(1e-4, 2);
+
 // Ashikhmin–Shirley's exponents: exactly one of the pairs roughness_u/roughness_v (n = 1/r)
 // and exponent_u/exponent_v, each pair complete.
 std::unique_ptr<Material> makeAshikhminShirley(ObjectReader& j, const AssetResolver& assets) {
@@ -29,7 +36,7 @@ std::unique_ptr<Material> makeAshikhminShirley(ObjectReader& j, const AssetResol
     const std::string v = exponents ? "exponent_v" : "roughness_v";
     for (const std::string& key : {u, v})
         if (!j.has(key)) j.fail(key, "missing: the pair needs both its u and v values");
-    const Range range = exponents ? Range::nonNegative() : Range{0, 1, true, false};
+    const Range range = exponents ? kExponentRange : kRoughnessRange;
     TexturePtr<float> tu = readFloatTexture(j, u, 1.0f, range, assets);
     TexturePtr<float> tv = readFloatTexture(j, v, 1.0f, range, assets);
     return std::make_unique<AshikhminShirley>(diffuse, specular, std::move(tu), std::move(tv),
@@ -58,14 +65,14 @@ std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& 
         {"blinn",
          [](ObjectReader& j, const AssetResolver& resolver) {
              auto r = readRgbTexture(j, "reflectance", Rgb(1.0f), Range::unit(), resolver);
-             auto roughness = readFloatTexture(j, "roughness", 0.1f, {0, 1, true, false}, resolver);
+             auto roughness = readFloatTexture(j, "roughness", 0.1f, kRoughnessRange, resolver);
              const float ior = j.getFloat("ior", 1.5f, Range::positive());
              return std::make_unique<Blinn>(std::move(r), std::move(roughness), ior);
          }},
         {"cook_torrance",
          [](ObjectReader& j, const AssetResolver& resolver) {
              auto r = readRgbTexture(j, "reflectance", Rgb(1.0f), Range::unit(), resolver);
-             auto alpha = readFloatTexture(j, "roughness", 0.2f, {0, 2, true, false}, resolver);
+             auto alpha = readFloatTexture(j, "roughness", 0.2f, kBeckmannRange, resolver);
              const float ior = j.getFloat("ior", 1.5f, Range::positive());
              return std::make_unique<CookTorrance>(std::move(r), std::move(alpha), ior);
          }},
