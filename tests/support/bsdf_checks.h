@@ -17,8 +17,9 @@ namespace rr::test {
 
 // Where to histogram sampled directions: a cap of half-angle `capDegrees` around `axis`
 // (local shading frame), divided into zCells × phiCells equal-solid-angle cells, plus one cell
-// for everything outside the cap whose expected count is the complement. The default is the
-// whole sphere. Zoom onto a narrow lobe (exponent 1000, roughness 0.001) by centring the cap on
+// for everything outside the cap, together with the declined and specular samples, whose
+// expected count is the complement of pdf()'s mass in the cap. The default is the whole
+// sphere. Zoom onto a narrow lobe (exponent 1000, roughness 0.001) by centring the cap on
 // its peak, so that the cells resolve it.
 struct BsdfHistogramLayout {
     Vec3 axis = Vec3(0, 0, 1);
