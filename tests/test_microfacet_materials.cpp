@@ -490,7 +490,11 @@ TEST(DeclinedSamples, CountAgainstTheMassThePdfLacks) {
 std::unique_ptr<Material> fromJson(const std::string& text) {
     const Json j = Json::parse(text);
     ObjectReader reader(j, "/materials/m");
-    return makeMaterial(reader, AssetResolver({}));
+    // These materials refer to no other material.
+    const MaterialReferences none = [](const Json&, const std::string& pointer) -> const Material* {
+        throw ConfigError(pointer, "no material references in this test");
+    };
+    return makeMaterial(reader, AssetResolver({}), none);
 }
 
 std::string errorPointer(const std::string& text) {
