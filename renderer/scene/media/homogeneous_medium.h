@@ -3,8 +3,9 @@
 //
 // Free-flight distances for RGB σt: a single density must serve all three channels and stay
 // positive wherever any channel's integrand is, or the estimator is biased for chromatic
-// media. We use the equal-weight mixture of the channels' exponentials (the "single-sample
-// mixture" over channels, Veach 1997 §9.2.4):
+// media. We use the equal-weight mixture of the channels' exponentials (the density of Veach's
+// one-sample model over the three channels' strategies with the balance heuristic, Veach 1997
+// §9.2.4):
 //   S(t) = mean_c e^{−σt,c t}  (probability of no collision before t),
 //   pdf(t) = −S'(t) = mean_c σt,c e^{−σt,c t},
 // drawn by inverting S rather than by first picking a channel, so that u → t is one monotone
