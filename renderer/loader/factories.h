@@ -13,6 +13,7 @@
 #include "math/transform.h"
 #include "scene/light.h"
 #include "scene/material.h"
+#include "scene/medium.h"
 #include "scene/shape.h"
 
 namespace rr {
@@ -26,6 +27,9 @@ using MaterialReferences =
 // Material parameters may be textures; image textures are found through `assets`.
 std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& assets,
                                        const MaterialReferences& references);
+
+// A participating medium: {"sigma_a", "sigma_s", "phase"} (configs/README.md, "Media").
+std::unique_ptr<Medium> makeMedium(ObjectReader& json);
 
 // Shapes are built in world space: `transform` is applied to their defining points.
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,

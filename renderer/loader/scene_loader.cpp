@@ -265,11 +265,17 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
         twoSided = ej.getBool("two_sided", false);
         ej.finish();
     }
+    const Medium* interior = nullptr;
+    if (const Json* m = j.rawOptional("interior_medium")) {
+        ObjectReader mj(*m, j.pointerTo("interior_medium"));
+        interior = builder.addMedium(makeMedium(mj));
+    }
     const Material* material = nullptr;
     if (j.has("material"))
         material = materials.resolve(j);
-    else if (emission.isBlack())
-        j.fail("material", "missing required key (only emitters may omit a material)");
+    else if (emission.isBlack() && !interior)
+        j.fail("material",
+               "missing required key (only emitters and medium boundaries may omit a material)");
 
     Vec3 motion(0.0f);
     if (const Json* m = j.rawOptional("motion")) {
@@ -289,6 +295,7 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
     if (!(shape->area() > 0) || !std::isfinite(shape->area()))
         j.fail("type", "the shape has zero or non-finite area");
     if (shutterOpenInterval) shape->setMotion(motion);
+    shape->setInteriorMedium(interior);
     builder.addShape(std::move(shape), material, emission, twoSided);
 }
 
@@ -329,6 +336,14 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     }
     builder.setCamera(camera, render.width, render.height);
 
+    // Where the first medium is declared, for the error if the integrator cannot render it.
+    std::string mediumPointer;
+    if (const Json* m = root.rawOptional("medium")) {
+        ObjectReader mj(*m, root.pointerTo("medium"));
+        builder.setSceneMedium(builder.addMedium(makeMedium(mj)));
+        mediumPointer = mj.pointer();
+    }
+
     MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder,
                               assets);
 
@@ -337,6 +352,8 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     for (size_t i = 0; i < shapes.size(); ++i) {
         ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
         readShape(sj, materials, builder, assets, camera);
+        if (mediumPointer.empty() && shapes[i].contains("interior_medium"))
+            mediumPointer = sj.pointerTo("interior_medium");
     }
 
     if (const Json* lights = root.rawOptional("lights")) {
@@ -355,6 +372,10 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         integrator = makeIntegrator(reader, path);
     }
     checkStructuredSampleCount(render, *integrator, root.pointerTo("render") + "/spp");
+    if (!mediumPointer.empty() && !integrator->supportsMedia())
+        throw ConfigError(mediumPointer, "the " + integrator->name() +
+                                             " integrator does not render participating media; "
+                                             "use \"path\" or \"path_mis\"");
     root.finish();
 
     LoadedScene loaded;
