@@ -5,6 +5,25 @@
 
 namespace rr {
 
+namespace {
+
+// The mean of dω/(ds dt) over a texel (a 4 × 4 midpoint rule): the texel's solid angle over its
+// area. The sampling weight must follow the solid angle, not the Jacobian at the centre: at the
+// probe's rim the Jacobian falls from its value at the inner edge of a texel to zero across
+// it, and a texel weighted by its centre value alone would give radiance/pdf tens of times the
+// mean over its inner part (heavy-tailed estimates).
+float meanJacobian(const EnvLayout& layout, int col, int row, int width, int height) {
+    constexpr int kSub = 4;
+    float sum = 0;
+    for (int a = 0; a < kSub; ++a)
+        for (int b = 0; b < kSub; ++b)
+            sum += layout.jacobian({(float(col) + (float(a) + 0.5f) / kSub) / float(width),
+                                    (float(row) + (float(b) + 0.5f) / kSub) / float(height)});
+    return sum / (kSub * kSub);
+}
+
+}  // namespace
+
 EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout, const Rgb& scale,
                                const Frame& toWorld)
     : image_(std::move(image)), layout_(std::move(layout)), toWorld_(toWorld) {
@@ -17,13 +36,15 @@ EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout
             const size_t i = size_t(row) * width + col;
             const Vec2 centre((float(col) + 0.5f) / float(width),
                               (float(row) + 0.5f) / float(height));
-            const float jacobian = layout_->jacobian(centre);
             Rgb& p = image_.pixels[i];
             // A texel whose centre has no solid angle is masked: the probe's texels outside
             // the unit disc (u² + v² > 1), which hold the copyright notice, not radiance.
-            p = jacobian > 0
-                    ? Rgb(std::max(p.r, 0.0f), std::max(p.g, 0.0f), std::max(p.b, 0.0f)) * scale
-                    : Rgb(0.0f);
+            if (!(layout_->jacobian(centre) > 0)) {
+                p = Rgb(0.0f);
+                continue;
+            }
+            p = Rgb(std::max(p.r, 0.0f), std::max(p.g, 0.0f), std::max(p.b, 0.0f)) * scale;
+            const float jacobian = meanJacobian(*layout_, col, row, width, height);
             weights[i] = p.luminance() * jacobian;
             for (int c = 0; c < 3; ++c)
                 integral[c] += double(p[c]) * jacobian * texelArea;

@@ -6,9 +6,10 @@
 // within a texel, and texels masked out (the probe's outside, with its copyright notice) cannot
 // bleed into their neighbours as they would under bilinear filtering.
 //
-// Importance sampling: a texel is chosen with probability ∝ luminance × dω/(ds dt) at its centre
-// (Distribution2D), a point uniformly inside it, and the direction there; the solid-angle
-// density is p(s, t) / (dω/(ds dt)) (the change of variables from image to sphere).
+// Importance sampling: a texel is chosen with probability ∝ luminance × its solid angle (the
+// mean of dω/(ds dt) over it; Distribution2D), a point uniformly inside it, and the direction
+// there; the solid-angle density is p(s, t) / (dω/(ds dt)) (the change of variables from image
+// to sphere).
 #pragma once
 
 #include <memory>
@@ -41,7 +42,7 @@ class EnvironmentMap final : public Light {
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
 
     const EnvLayout& layout() const { return *layout_; }
-    // ∫ L dω over the sphere (midpoint rule over the texels).
+    // ∫ L dω over the sphere: Σ texel radiance × texel solid angle.
     const Rgb& radianceIntegral() const { return radianceIntegral_; }
 
   private:

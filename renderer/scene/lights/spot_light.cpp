@@ -4,23 +4,33 @@
 
 namespace rr {
 
+namespace {
+
+// 1 − cos θ = 2 sin²(θ/2), accurate for narrow cones where cos θ rounds to 1.
+float oneMinusCos(float angle) {
+    return float(2 * std::pow(std::sin(double(angle) / 2), 2));
+}
+
+}  // namespace
+
 SpotLight::SpotLight(const Vec3& position, const Vec3& axis, const Rgb& intensity, float cone,
                      float falloffStart)
     : position_(position),
       axis_(axis),
       intensity_(intensity),
-      cosCone_(std::cos(cone)),
-      cosFalloffStart_(std::cos(falloffStart)) {
-    // 1 − cos θ = 2 sin²(θ/2), accurate for narrow cones where cos θ rounds to 1.
-    const auto oneMinusCos = [](double angle) { return 2 * std::pow(std::sin(angle / 2), 2); };
-    power_ = intensity * float(kPi * (oneMinusCos(falloffStart) + oneMinusCos(cone)));
+      oneMinusCosCone_(oneMinusCos(cone)),
+      oneMinusCosFalloffStart_(oneMinusCos(falloffStart)) {
+    power_ = intensity * (kPi * (oneMinusCosFalloffStart_ + oneMinusCosCone_));
 }
 
 float SpotLight::falloff(const Vec3& direction) const {
-    const float cosTheta = dot(direction, axis_);
-    if (cosTheta >= cosFalloffStart_) return 1;
-    if (cosTheta <= cosCone_) return 0;
-    const float x = (cosTheta - cosCone_) / (cosFalloffStart_ - cosCone_);
+    // 1 − cos θ = |w − axis|² / 2 for unit vectors: no cancellation near the axis, so the
+    // penumbra of a cone of a degree or two is resolved in single precision.
+    const float oneMinusCosTheta = 0.5f * lengthSquared(direction - axis_);
+    if (oneMinusCosTheta <= oneMinusCosFalloffStart_) return 1;
+    if (oneMinusCosTheta >= oneMinusCosCone_) return 0;
+    const float x =
+        (oneMinusCosCone_ - oneMinusCosTheta) / (oneMinusCosCone_ - oneMinusCosFalloffStart_);
     return x * x * (3 - 2 * x);
 }
 

@@ -29,7 +29,7 @@ class SpotLight final : public Light {
   private:
     Vec3 position_, axis_;
     Rgb intensity_;
-    float cosCone_, cosFalloffStart_;
+    float oneMinusCosCone_, oneMinusCosFalloffStart_;
     Rgb power_;
 };
 

@@ -64,12 +64,15 @@ std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices)
         if (length(plane.p[(i + 1) % n] - plane.p[i]) <= 1e-6 * r)
             return PolygonProblem{(i + 1) % n, "repeats the previous vertex"};
     if (!(plane.area > 1e-6 * r * r)) return PolygonProblem{-1, "the polygon has zero area"};
-    for (int i = 0; i < n; ++i) {
-        const double offPlane = std::abs(dot(plane.p[i], plane.normal));
-        if (offPlane > 1e-4 * r)
-            return PolygonProblem{i, "is off the polygon's plane by " + std::to_string(offPlane) +
+    int worst = 0;
+    for (int i = 1; i < n; ++i)
+        if (std::abs(dot(plane.p[i], plane.normal)) > std::abs(dot(plane.p[worst], plane.normal)))
+            worst = i;
+    const double offPlane = std::abs(dot(plane.p[worst], plane.normal));
+    if (offPlane > 1e-4 * r)
+        return PolygonProblem{worst, "is the farthest off the polygon's plane, by " +
+                                         std::to_string(offPlane) +
                                          " (more than 1e-4 of the polygon's size)"};
-    }
     // Turning angle at each vertex, signed about the normal: all ≥ 0 for a convex polygon,
     // and summing to 2π when the boundary winds around once (a pentagram turns by 4π).
     double totalTurn = 0;
