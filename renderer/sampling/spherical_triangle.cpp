@@ -28,9 +28,9 @@ DVec3 sampleSphericalTriangle(const DVec3& a, const DVec3& b, const DVec3& c, do
     // from b to ĉ with cos of its distance to b uniform between 1 and b·ĉ.
     const DVec3 tb = arcTangent(a, b), tc = arcTangent(a, c);
     const double cosAlpha = clampUnit(dot(tb, tc)), sinAlpha = length(cross(tb, tc));
+    const double alpha = std::atan2(sinAlpha, cosAlpha);  // the angle at a
     const double subArea = double(u.x) * area;
-    const double s = std::sin(subArea - std::acos(cosAlpha));
-    const double t = std::cos(subArea - std::acos(cosAlpha));
+    const double s = std::sin(subArea - alpha), t = std::cos(subArea - alpha);
     const double uu = t - cosAlpha;
     const double v = s + sinAlpha * dot(a, b);  // dot(a, b) = cos of the side c
     const double q = clampUnit(((v * t - uu * s) * cosAlpha - v) / ((v * s + uu * t) * sinAlpha));
