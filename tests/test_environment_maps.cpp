@@ -713,11 +713,11 @@ INSTANTIATE_TEST_SUITE_P(LayoutsAndIntegrators, ConstantMapRenders,
 
 // --- MIS: the direct-lighting strategies agree ---------------------------------------------------
 
-// Light sampling (sample()), BSDF sampling (escaped rays weighted by directionPdf()) and their
-// MIS combination estimate the same image of a diffuse sphere on a polygon floor under a
-// sparse map: they agree within Šidák-corrected z-tests (2 maps × 3 pairs × 3 channels). The
-// camera looks down and sees only the floor and the sphere, not the map itself, which every
-// strategy would count alike.
+// Light sampling (sample()), BSDF sampling (escaped rays weighted by directionPdf(), polygon
+// hits by the polygon's solid-angle pdf) and their MIS combination estimate the same image of a
+// diffuse sphere on a polygon floor under a sparse map and a polygonal light: they agree within
+// Šidák-corrected z-tests (2 maps × 3 pairs × 3 channels). The camera looks down and sees only
+// the floor and the sphere, not the lights themselves, which every strategy would count alike.
 TEST(EnvironmentMapMis, DirectStrategiesAgree) {
     const double z = zThreshold(sidakAlpha(0.01, 18));
     for (const SparseMap& m : kSparseMaps) {
@@ -734,7 +734,10 @@ TEST(EnvironmentMapMis, DirectStrategiesAgree) {
                                 "material": {"type": "lambert", "albedo": 0.7}},
                                {"type": "polygon", "vertices": [[-2, -0.7, 1.5], [1.5, -0.7, 2],
                                  [2, -0.7, -1], [0, -0.7, -2.5], [-2, -0.7, -1]],
-                                "material": {"type": "lambert", "albedo": 0.5}}],
+                                "material": {"type": "lambert", "albedo": 0.5}},
+                               {"type": "polygon", "vertices": [[1, 1.75, -0.5], [2.1, 1.86, -0.4],
+                                 [2, 1.85, 0.6], [0.9, 1.74, 0.5]],
+                                "emission": {"radiance": [6, 4, 2]}}],
                     "lights": [{"type": "environment", "file": ")" +
                 file.string() + R"(", "layout": ")" + m.layout + R"("}]})");
             renders.push_back(renderScene(scene, 256, seed++));

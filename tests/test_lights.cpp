@@ -27,9 +27,10 @@ namespace rr::test {
 namespace {
 
 // Every χ² run in this file: sphere from outside at 3 distances, from inside, quad, disk,
-// two-sided disk from behind, triangle-mesh roof, polygon (9 light-sampling runs), polygon
-// area samples on its plane (1), uniform and power selection (2), and 4 negative controls.
-constexpr int kRuns = 16;
+// two-sided disk from behind, triangle-mesh roof, polygon from two points (10 light-sampling
+// runs), polygon area samples on its plane (1), uniform and power selection (2), and 5
+// negative controls.
+constexpr int kRuns = 18;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
@@ -336,10 +337,20 @@ bool insidePolygon(const Vec2& p) {
     return true;
 }
 
-TEST(PolygonLight, DirectionsFollowPdf) {
+// Sampled by solid angle: from kPolygonReference, and from just above the polygon (the fan's
+// spherical triangles then cover most of the hemisphere).
+struct PolygonView {
+    const char* id;
+    const char* name;
+    Vec3 reference;
+    uint64_t seed;
+};
+class PolygonLight : public ::testing::TestWithParam<PolygonView> {};
+
+TEST_P(PolygonLight, DirectionsFollowPdf) {
     const LoadedScene s = makeScene(polygonJson());
     const Light& light = *s.scene->lights()[0];
-    const Vec3 reference = kPolygonReference;
+    const Vec3 reference = GetParam().reference;
     const Vec3 axis = -kPolygonNormal;
     const DirectionCells cells{30, 48, lowestZ(reference, axis, polygonVertices())};
     for (const Vec3& v : polygonVertices()) {
@@ -350,8 +361,37 @@ TEST(PolygonLight, DirectionsFollowPdf) {
             EXPECT_GT(std::min(f - std::floor(f), std::ceil(f) - f), 0.1)
                 << "vertex near a cell edge";
     }
-    const LightRun run = runLightChi2(*s.scene, light, reference, axis, cells, 47);
-    expectLightFits(run, "polygon");
+    const LightRun run = runLightChi2(*s.scene, light, reference, axis, cells, GetParam().seed);
+    expectLightFits(run, GetParam().name);
+}
+
+const PolygonView kPolygonViews[] = {
+    {"Reference", "polygon", kPolygonReference, 47},
+    {"Close", "polygon, close",
+     kPolygonCenter + Frame(kPolygonNormal).toWorld(Vec3(-0.1f, 0.2f, 0.05f)), 46}};
+INSTANTIATE_TEST_SUITE_P(Views, PolygonLight, ::testing::ValuesIn(kPolygonViews),
+                         [](const auto& p) { return std::string(p.param.id); });
+
+// The density is 1/Ω, with Ω the solid angle in closed form for a square seen on its axis,
+// 4 asin(a²/(a² + d²)) for half-side a at distance d; far away (Ω < 10⁻⁴ sr) the polygon is
+// sampled by area, and the density is that of area sampling.
+TEST(PolygonLightPdf, IsOneOverSolidAngleOrByAreaWhenFar) {
+    const LoadedScene s = makeScene(
+        R"({"type": "polygon", "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
+            "emission": {"radiance": 1}})");
+    const Light& light = *s.scene->lights()[0];
+    for (double d : {0.01, 0.5, 1.0, 30.0, 150.0, 1000.0}) {
+        const Vec3 reference(0, 0, float(d));
+        SurfaceHit hit;
+        ASSERT_TRUE(
+            s.scene->intersect(Ray{reference, normalize(Vec3(0.3f, -0.4f, 0) - reference)}, &hit));
+        const double omega = 4 * std::asin(1 / (1 + d * d));
+        const double expected =
+            omega >= Polygon::kMinSolidAngle
+                ? 1 / omega
+                : areaToSolidAngle(0.25f, reference, hit.position, hit.geometricNormal);
+        EXPECT_NEAR(light.pdf(reference, hit), expected, 1e-5 * expected) << "d = " << d;
+    }
 }
 
 // Area samples, in the polygon's (x, y) coordinates, against the uniform density 1/A on it
@@ -465,6 +505,22 @@ TEST(LightChi2NegativeControl, QuadSamplesRejectPdfWithoutCosine) {
     const LightRun run = runLightChi2(*s.scene, light, reference, -normal, cells, 30,
                                       [&](const SurfaceHit& hit) { return noCosine(hit) / norm; });
     kChi2.expectRejects(run.outcome, "quad samples vs pdf without cosine");
+}
+
+// Solid-angle samples of the polygon, seen from close by, judged with the area-sampling density.
+TEST(LightChi2NegativeControl, PolygonSolidAngleSamplesRejectAreaSamplingPdf) {
+    const LoadedScene s = makeScene(polygonJson());
+    const Light& light = *s.scene->lights()[0];
+    const PolygonView& view = kPolygonViews[1];
+    const Vec3 axis = -kPolygonNormal;
+    const LightRun run =
+        runLightChi2(*s.scene, light, view.reference, axis,
+                     {30, 48, lowestZ(view.reference, axis, polygonVertices())}, view.seed,
+                     [&](const SurfaceHit& hit) {
+                         return double(areaToSolidAngle(1 / float(polygonArea()), view.reference,
+                                                        hit.position, hit.geometricNormal));
+                     });
+    kChi2.expectRejects(run.outcome, "polygon solid-angle samples vs area-sampling pdf");
 }
 
 // Polygon area samples judged with the density of picking each fan triangle with equal

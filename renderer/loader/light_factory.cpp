@@ -32,11 +32,10 @@ std::unique_ptr<Light> makeSpot(ObjectReader& j, const AssetResolver&) {
 // translation, as the map's frame; anything else is an error at "transform".
 Frame readRotation(ObjectReader& j) {
     const Transform t = readTransform(j, "transform");
-    const Frame f{};
-    Frame r;
-    r.s = t.vector(f.s);
-    r.t = t.vector(f.t);
-    r.n = t.vector(f.n);
+    Frame r;  // the images of the map's X, Y and Z axes
+    r.s = t.vector(Vec3(1, 0, 0));
+    r.t = t.vector(Vec3(0, 1, 0));
+    r.n = t.vector(Vec3(0, 0, 1));
     float scale = 0;
     const bool rotation = t.isSimilarity(&scale) && std::abs(scale - 1) < 1e-4f &&
                           dot(cross(r.s, r.t), r.n) > 0 && t.point(Vec3(0.0f)) == Vec3(0.0f);

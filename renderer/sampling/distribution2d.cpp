@@ -32,7 +32,7 @@ Vec2 Distribution2D::sample(Vec2 u, float* pdf) const {
 float Distribution2D::pdf(Vec2 p) const {
     const int col = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
     const int row = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
-    return cellProbability(col, row) * float(width_) * float(height_);
+    return rows_.pmf(row) * columns_[size_t(row)].pmf(col) * float(width_) * float(height_);
 }
 
 }  // namespace rr

@@ -23,12 +23,6 @@ class Distribution2D {
     Vec2 sample(Vec2 u, float* pdf) const;
     // Density at a point of [0,1]² (points on the upper edges belong to the last cells).
     float pdf(Vec2 p) const;
-    // Probability of the cell (col, row).
-    float cellProbability(int col, int row) const {
-        return rows_.pmf(row) * columns_[size_t(row)].pmf(col);
-    }
-    int width() const { return width_; }
-    int height() const { return height_; }
 
   private:
     int width_ = 0, height_ = 0;

@@ -2,8 +2,8 @@
 // solid-angle density; MIS asks for the density of a direction found by BSDF sampling.
 // How the papers' other lights fit:
 //  - spot: a delta light like PointLight, its intensity shaped by the cone and falloff;
-//  - convex polygon: an AreaLight on a polygon Shape (a triangle fan sampled by area), no
-//    change here;
+//  - convex polygon: an AreaLight on a polygon Shape (a triangle fan sampled by solid
+//    angle), no change here;
 //  - environment map: an infinite light (isInfinite()). sample() returns a direction with the
 //    map's solid-angle pdf and `position` outside the scene's bounding sphere (the shadow ray
 //    runs past every surface); rays that escape the scene see escapedRadiance(), and MIS

@@ -3,27 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/dvec3.h"
+#include "sampling/spherical_triangle.h"
 #include "sampling/warps.h"
 
 namespace rr {
 
 namespace {
-
-struct DVec3 {
-    double x = 0, y = 0, z = 0;
-};
-DVec3 operator-(const DVec3& a, const DVec3& b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-double dot(const DVec3& a, const DVec3& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-DVec3 cross(const DVec3& a, const DVec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double length(const DVec3& a) {
-    return std::sqrt(dot(a, a));
-}
 
 // The polygon's plane in double precision: the vertices relative to their mean, the unit
 // normal (Newell's area vector, right-hand rule on the vertex order), area and size.
@@ -37,19 +23,17 @@ Plane fitPlane(std::span<const Vec3> vertices) {
     Plane plane;
     const double n = double(vertices.size());
     for (const Vec3& v : vertices)
-        plane.mean = {plane.mean.x + v.x / n, plane.mean.y + v.y / n, plane.mean.z + v.z / n};
+        plane.mean = plane.mean + DVec3(v) / n;
     for (const Vec3& v : vertices) {
-        plane.p.push_back(DVec3{v.x, v.y, v.z} - plane.mean);
+        plane.p.push_back(DVec3(v) - plane.mean);
         plane.size = std::max(plane.size, length(plane.p.back()));
     }
     DVec3 sum;
-    for (size_t i = 0; i < plane.p.size(); ++i) {
-        const DVec3 c = cross(plane.p[i], plane.p[(i + 1) % plane.p.size()]);
-        sum = {sum.x + c.x, sum.y + c.y, sum.z + c.z};
-    }
+    for (size_t i = 0; i < plane.p.size(); ++i)
+        sum = sum + cross(plane.p[i], plane.p[(i + 1) % plane.p.size()]);
     const double twiceArea = length(sum);
     plane.area = twiceArea / 2;
-    if (twiceArea > 0) plane.normal = {sum.x / twiceArea, sum.y / twiceArea, sum.z / twiceArea};
+    if (twiceArea > 0) plane.normal = sum / twiceArea;
     return plane;
 }
 
@@ -91,13 +75,9 @@ std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices)
 
 Polygon::Polygon(std::span<const Vec3> vertices) {
     const Plane plane = fitPlane(vertices);
-    normal_ = normalize(Vec3(float(plane.normal.x), float(plane.normal.y), float(plane.normal.z)));
-    for (const DVec3& p : plane.p) {
-        const double h = dot(p, plane.normal);  // projected onto the plane
-        vertices_.emplace_back(float(plane.mean.x + p.x - h * plane.normal.x),
-                               float(plane.mean.y + p.y - h * plane.normal.y),
-                               float(plane.mean.z + p.z - h * plane.normal.z));
-    }
+    normal_ = normalize(plane.normal.toFloat());
+    for (const DVec3& p : plane.p)  // projected onto the plane
+        vertices_.push_back((plane.mean + p - plane.normal * dot(p, plane.normal)).toFloat());
     const Vec3& v0 = vertices_[0];
     std::vector<float> areas;
     for (size_t k = 1; k + 1 < vertices_.size(); ++k) {
@@ -158,6 +138,59 @@ ShapeSample Polygon::sampleArea(Vec2 u) const {
     s.normal = normal_;
     s.errorScale = errorScale_;
     return s;
+}
+
+double Polygon::solidAngle(const Vec3& reference, const Vec3& offset) const {
+    const DVec3 r(reference), v0 = normalize(DVec3(vertices_[0] + offset) - r);
+    double total = 0;
+    DVec3 previous = normalize(DVec3(vertices_[1] + offset) - r);
+    for (size_t k = 2; k < vertices_.size(); ++k) {
+        const DVec3 next = normalize(DVec3(vertices_[k] + offset) - r);
+        total += sphericalTriangleArea(v0, previous, next);
+        previous = next;
+    }
+    return total;
+}
+
+bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
+    const Vec3 offset = offsetAt(time);
+    const double total = solidAngle(reference, offset);
+    if (!(total >= kMinSolidAngle)) return Shape::sampleDirection(reference, u, time, out);
+    // The fan triangles project onto the sphere of directions without overlap (the polygon is
+    // convex and planar): pick one with probability ∝ its solid angle, reusing u.x.
+    const DVec3 r(reference), v0 = normalize(DVec3(vertices_[0] + offset) - r);
+    const double target = double(u.x) * total;
+    double before = 0;
+    for (size_t k = 2; k < vertices_.size(); ++k) {
+        const DVec3 a = normalize(DVec3(vertices_[k - 1] + offset) - r);
+        const DVec3 b = normalize(DVec3(vertices_[k] + offset) - r);
+        const double area = sphericalTriangleArea(v0, a, b);
+        if (before + area <= target && k + 1 < vertices_.size()) {
+            before += area;
+            continue;
+        }
+        if (!(area > 0)) return false;  // a degenerate last triangle, reached by rounding
+        const float remapped = float(std::clamp((target - before) / area, 0.0, 1.0));
+        const DVec3 w =
+            sampleSphericalTriangle(v0, a, b, area, Vec2(std::min(remapped, 0x1.fffffep-1f), u.y));
+        // Where the direction meets the polygon's plane.
+        const DVec3 n(normal_);
+        const double t = dot(DVec3(vertices_[0] + offset) - r, n) / dot(w, n);
+        if (!(t > 0)) return false;
+        out->position = (r + w * t).toFloat();
+        out->normal = normal_;
+        out->pdf = float(1 / total);
+        // The point is computed along the ray from the reference: its error scales with both.
+        out->errorScale = errorScale_ + motionScale() + maxAbsComponent(reference) + float(t);
+        return true;
+    }
+    return false;
+}
+
+float Polygon::directionPdf(const Vec3& reference, const SurfaceHit& hit) const {
+    const double total = solidAngle(reference, offsetAt(hit.time));
+    if (!(total >= kMinSolidAngle)) return Shape::directionPdf(reference, hit);
+    return float(1 / total);
 }
 
 }  // namespace rr
