@@ -12,10 +12,10 @@
 namespace rr::test {
 namespace {
 
-// Family-wise level 0.01 over every z-test in this file (Šidák): 4 furnace/sphere scenes × 2
+// Family-wise level 0.01 over every z-test in this file (Šidák): 5 furnace/sphere scenes × 2
 // integrators × (3 channels + 16 blocks) + 2 motion scenes × 2 integrators × 17 + the lights
-// over a floor (3 scales × 2 integrators + 2 integrators) × 17 = 356.
-constexpr int kComparisons = 356;
+// over a floor (3 scales × 2 integrators + 2 integrators) × 17 = 394.
+constexpr int kComparisons = 394;
 const double kZ = zThreshold(sidakAlpha(0.01, kComparisons));
 
 // Checks the image mean and the mean of each of 4×4 blocks against `expected` (per channel
@@ -90,6 +90,18 @@ TEST_P(AnalyticScenes, ConvexDiffuseSphereUnderUniformEmitterRendersAlbedoTimesL
            "material": {"type": "lambert", "albedo": [0.6, 0.3, 0.9]}}]})");
     const TestRender r = renderScene(scene, 64);
     expectRegionsMatch(r.film, Rgb(0.9f, 0.3f, 0.45f), "sphere in uniform emitter");
+}
+
+// The same sphere under a constant environment light (an infinite light, reached by escaping
+// rays and by next-event estimation towards uniformly sampled directions): Lo = ρL.
+TEST_P(AnalyticScenes, ConvexDiffuseSphereUnderConstantEnvironmentRendersAlbedoTimesL) {
+    const LoadedScene scene = loadSceneText(header(64) + R"(
+        "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 20},
+        "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+                    "material": {"type": "lambert", "albedo": [0.6, 0.3, 0.9]}}],
+        "lights": [{"type": "environment", "radiance": [1.5, 1, 0.5]}]})");
+    const TestRender r = renderScene(scene, 64);
+    expectRegionsMatch(r.film, Rgb(0.9f, 0.3f, 0.45f), "sphere under a constant environment");
 }
 
 // An emitter seen directly renders its radiance exactly, in every pixel.

@@ -29,12 +29,30 @@ float DirectLighting::weight(float nSelf, float pdfSelf, float nOther, float pdf
                : 1.0f;
 }
 
+Rgb DirectLighting::escapedToInfiniteLights(const Scene& scene, const Vec3& w,
+                                            const Vec3& reference, const BsdfSample& bs,
+                                            float nBsdf, float nLight) const {
+    Rgb sum(0.0f);
+    for (const Light* light : scene.infiniteLights()) {
+        const Rgb le = light->escapedRadiance(w);
+        if (le.isBlack()) continue;
+        const float misWeight =
+            bs.isSpecular()
+                ? 1.0f
+                : weight(nBsdf, bs.pdf, nLight,
+                         scene.lightSelector().pmf(*light, reference) * light->directionPdf(w));
+        sum += le * (misWeight / nBsdf);
+    }
+    return sum;
+}
+
 Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                              RayCounters& rays) const {
     const Ray cameraRay = generateCameraRay(scene.camera(), x, y, sample);
     ++rays.camera;
     SurfaceHit hit;
-    if (!scene.intersect(cameraRay, &hit)) return Rgb(0.0f);
+    if (!scene.intersect(cameraRay, &hit))
+        return escapedRadiance(scene, cameraRay.direction, cameraRay.origin, true, 0);
 
     Rgb radiance(0.0f);
     if (const AreaLight* light = hit.shape->areaLight())
@@ -80,7 +98,13 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
             continue;
         ++rays.extension;
         SurfaceHit lightHit;
-        if (!scene.intersect(hit.spawn(frame.toWorld(bs.wi)), &lightHit)) continue;
+        const Vec3 wiWorld = frame.toWorld(bs.wi);
+        if (!scene.intersect(hit.spawn(wiWorld), &lightHit)) {
+            // Escaped: the infinite lights, weighted as area lights are below.
+            radiance += bs.weight *
+                        escapedToInfiniteLights(scene, wiWorld, hit.position, bs, nBsdf, nLight);
+            continue;
+        }
         const AreaLight* light = lightHit.shape->areaLight();
         if (!light) continue;
         const Rgb le = light->emitted(lightHit.geometricNormal, -frame.toWorld(bs.wi));

@@ -35,6 +35,10 @@ class DirectLighting final : public Integrator {
     bool usesBsdf() const { return settings_.strategy != DirectStrategy::Light; }
     // MIS weight of one strategy's sample given both densities (1 when not combining).
     float weight(float nSelf, float pdfSelf, float nOther, float pdfOther) const;
+    // The infinite lights seen by a BSDF sample that escaped in direction `w`, weighted and
+    // divided by the number of BSDF samples like emission found on a surface.
+    Rgb escapedToInfiniteLights(const Scene& scene, const Vec3& w, const Vec3& reference,
+                                const BsdfSample& bs, float nBsdf, float nLight) const;
 
     DirectSettings settings_;
 };

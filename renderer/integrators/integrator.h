@@ -45,6 +45,17 @@ class Integrator {
 // when the camera uses them.
 Ray generateCameraRay(const Camera& camera, int x, int y, const PixelSample& sample);
 
+// Emission found by a BSDF-sampled ray (density `bsdfPdf`) from `reference`, weighted against
+// next-event estimation, whose density for the same light point or direction is
+// `lightSelectPmf`·`lightPdf`. Without next-event estimation (or after a specular bounce)
+// the emission counts in full.
+float emissionMisWeight(bool countInFull, float bsdfPdf, float lightPdf);
+
+// Radiance of the infinite lights along a ray that escaped the scene in direction `w`,
+// MIS-weighted as emissionMisWeight() says; `reference` is where the ray started.
+Rgb escapedRadiance(const Scene& scene, const Vec3& w, const Vec3& reference, bool countInFull,
+                    float bsdfPdf);
+
 // Veach's power heuristic (β = 2) for strategy a with nA samples against strategy b.
 inline float powerHeuristic(float nA, float pdfA, float nB, float pdfB) {
     const float a = nA * pdfA, b = nB * pdfB;

@@ -48,16 +48,19 @@ Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sa
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? rays.camera : rays.extension);
         SurfaceHit hit;
-        if (!scene.intersect(ray, &hit)) break;
+        if (!scene.intersect(ray, &hit)) {
+            radiance += throughput *
+                        escapedRadiance(scene, ray.direction, previous, countEmission, bsdfPdf);
+            break;
+        }
 
         if (const AreaLight* light = hit.shape->areaLight()) {
             const Rgb le = light->emitted(hit.geometricNormal, -ray.direction);
-            if (countEmission) {
-                radiance += throughput * le;
-            } else if (!le.isBlack()) {
-                const float lightPdf =
-                    scene.lightSelector().pmf(*light, previous) * light->pdf(previous, hit);
-                radiance += throughput * le * powerHeuristic(1, bsdfPdf, 1, lightPdf);
+            if (!le.isBlack()) {
+                const float lightPdf = countEmission ? 0.0f
+                                                     : scene.lightSelector().pmf(*light, previous) *
+                                                           light->pdf(previous, hit);
+                radiance += throughput * le * emissionMisWeight(countEmission, bsdfPdf, lightPdf);
             }
         }
         const Material* material = hit.shape->material();

@@ -4,10 +4,10 @@
 //  - spot: a delta light like PointLight, its intensity shaped by the cone and falloff;
 //  - convex polygon: an AreaLight on a polygon Shape (a triangle fan sampled by area), no
 //    change here;
-//  - environment map: an infinite light. sample() returns a direction with the map's
-//    solid-angle pdf and `position` far outside the scene's bounds (the shadow ray then runs
-//    to infinity); BSDF-sampled rays that escape the scene are where MIS meets it, so it adds
-//    radiance and pdf by direction for rays that hit no surface.
+//  - environment map: an infinite light (isInfinite()). sample() returns a direction with the
+//    map's solid-angle pdf and `position` outside the scene's bounding sphere (the shadow ray
+//    runs past every surface); rays that escape the scene see escapedRadiance(), and MIS
+//    weighs them with directionPdf().
 #pragma once
 
 #include "math/rgb.h"
@@ -37,6 +37,16 @@ class Light {
     // Total emitted power (flux), used for light selection by power.
     virtual Rgb power() const = 0;
     virtual bool isDelta() const = 0;
+
+    // Infinite lights surround the scene: they are seen by rays that hit nothing.
+    virtual bool isInfinite() const { return false; }
+    // Radiance arriving along a ray that leaves the scene in direction `w` (unit, world).
+    virtual Rgb escapedRadiance(const Vec3& /*w*/) const { return Rgb(0.0f); }
+    // Solid-angle density with which sample() yields direction `w` (infinite lights).
+    virtual float directionPdf(const Vec3& /*w*/) const { return 0; }
+    // Called once the scene is built, before power() is used: infinite lights need the
+    // bounding sphere of the scene for their shadow-ray targets and their power.
+    virtual void preprocess(const Vec3& /*sceneCenter*/, float /*sceneRadius*/) {}
 
     // Index in the scene's light list; set by the scene.
     int index() const { return index_; }

@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -121,6 +122,23 @@ std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
     rtcSetSceneBuildQuality(s.rtcScene_, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(s.rtcScene_);
     throwOnEmbreeError(s.device_, "scene build");
+
+    // Infinite lights need the bounding sphere (shadow-ray targets, power) before the light
+    // selector asks for power. A scene of lights only gets the unit sphere.
+    Vec3 center(0.0f);
+    float radius = 1;
+    if (!s.shapes_.empty()) {
+        RTCBounds b;
+        rtcGetSceneBounds(s.rtcScene_, &b);
+        const Vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
+        center = (lo + hi) * 0.5f;
+        radius = std::max(0.5f * length(hi - lo), 1e-6f);
+    }
+    for (const std::unique_ptr<Light>& owned : s.ownedLights_) {
+        Light* light = owned.get();
+        light->preprocess(center, radius);
+        if (light->isInfinite()) s.infiniteLights_.push_back(light);
+    }
 
     s.features_.motionBlur = anyMotion && s.camera_->hasShutterInterval();
     s.features_.thinLens = s.camera_->isThinLens();

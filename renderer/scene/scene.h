@@ -39,6 +39,8 @@ class Scene {
 
     const Camera& camera() const { return *camera_; }
     std::span<const Light* const> lights() const { return lights_; }
+    // The lights that rays escaping the scene see (environment maps).
+    std::span<const Light* const> infiniteLights() const { return infiniteLights_; }
     const LightSelector& lightSelector() const { return *lightSelector_; }
     const SceneFeatures& features() const { return features_; }
 
@@ -51,6 +53,7 @@ class Scene {
     std::vector<std::unique_ptr<Shape>> shapes_;  // index = Embree geometry id
     std::vector<std::unique_ptr<Light>> ownedLights_;
     std::vector<const Light*> lights_;
+    std::vector<const Light*> infiniteLights_;
     std::unique_ptr<LightSelector> lightSelector_;
     SceneFeatures features_;
     RTCDevice device_ = nullptr;

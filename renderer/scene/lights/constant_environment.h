@@ -1,0 +1,29 @@
+// An environment of constant radiance L in every direction (the "uniform lighting" of the RIS
+// paper's fig. 5, and the closed-form test case: a diffuse convex object under it reflects
+// albedo·L). Sampled uniformly over the sphere.
+#pragma once
+
+#include "scene/light.h"
+
+namespace rr {
+
+class ConstantEnvironment final : public Light {
+  public:
+    explicit ConstantEnvironment(const Rgb& radiance) : radiance_(radiance) {}
+
+    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
+    // Flux through the scene's bounding sphere: π r² (its cross-section) · 4π · L.
+    Rgb power() const override { return radiance_ * (4.0f * kPi * kPi * radius_ * radius_); }
+    bool isDelta() const override { return false; }
+    bool isInfinite() const override { return true; }
+    Rgb escapedRadiance(const Vec3&) const override { return radiance_; }
+    float directionPdf(const Vec3&) const override;
+    void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
+
+  private:
+    Rgb radiance_;
+    float radius_ = 1;
+};
+
+}  // namespace rr
