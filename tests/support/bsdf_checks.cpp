@@ -73,16 +73,21 @@ BsdfSamplingRun sampleBsdf(const Material& material, const ShadingContext& ctx, 
         }
         histogram.add(cap.toLocal(s.wi));
     }
-    const double drawn = samples - run.declined - run.specular - run.nonFinite;
+    // Declined samples are part of the distribution: pdf() integrates to one minus the
+    // probability of declining (a microfacet normal that reflects wo below the surface).
+    const double drawn = samples - run.specular - run.nonFinite;
     std::vector<double> expected = histogram.expected(
         [&](const Vec3& w) { return double(material.pdf(ctx, wo, cap.toWorld(w))); }, drawn);
-    // Outside the cap: whatever mass the cap does not hold (zero for the whole sphere, up to
-    // integration error, which must not turn into a negative expectation).
+    // The last cell holds the directions outside the cap and the declined samples, and
+    // expects whatever mass the cells do not hold (for the whole sphere, the declines; the
+    // integration error must not turn into a negative expectation).
     double inside = 0;
     for (size_t i = 0; i + 1 < expected.size(); ++i)
         inside += expected[i];
-    expected.back() = zMin > -1 ? std::max(0.0, drawn - inside) : 0.0;
-    run.outcome = chi2GoodnessOfFit(histogram.counts(), expected);
+    expected.back() = std::max(0.0, drawn - inside);
+    std::vector<double> observed = histogram.counts();
+    observed.back() += run.declined;
+    run.outcome = chi2GoodnessOfFit(observed, expected);
     return run;
 }
 
