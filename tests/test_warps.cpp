@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "math/frame.h"
 #include "sampling/hash.h"
 #include "sampling/warps.h"
 #include "support/chi2.h"
@@ -271,6 +272,34 @@ TEST(WarpsChi2NegativeControl, TriangleSamplesRejectALinearDensity) {
         squareToUniformTriangle, 6,
         [](const Vec2& b) { return trianglePdf(b) > 0 ? 6.0 * b.x : 0.0; }, 40, 37, 0, 1, 0, 1);
     kChi2.expectRejects(r);
+}
+
+}  // namespace
+}  // namespace rr::test
+
+namespace rr::test {
+namespace {
+
+// The shading frame follows the surface's tangent (anisotropic materials orient along it),
+// and falls back to the normal-only frame where the tangent is missing or along the normal.
+TEST(Frame, FromNormalAndTangentIsOrthonormalWithXAlongTheTangent) {
+    const Vec3 n = normalize(Vec3(0.3f, -0.5f, 0.8f));
+    const Vec3 tangent(1, 2, 0.5f);
+    const Frame f = Frame::fromNormalAndTangent(n, tangent);
+    EXPECT_NEAR(length(f.s), 1, 1e-6f);
+    EXPECT_NEAR(length(f.t), 1, 1e-6f);
+    EXPECT_NEAR(dot(f.s, f.n), 0, 1e-6f);
+    EXPECT_NEAR(dot(f.t, f.n), 0, 1e-6f);
+    EXPECT_NEAR(dot(f.s, f.t), 0, 1e-6f);
+    EXPECT_NEAR(dot(cross(f.s, f.t), f.n), 1, 1e-6f);  // right-handed
+    const Vec3 projected = normalize(tangent - n * dot(n, tangent));
+    EXPECT_NEAR(dot(f.s, projected), 1, 1e-6f);
+    for (const Vec3& degenerate : {Vec3(0.0f), n * 3.0f}) {
+        const Frame g = Frame::fromNormalAndTangent(n, degenerate);
+        const Frame h(n);
+        EXPECT_EQ(g.s.x, h.s.x);
+        EXPECT_EQ(g.t.y, h.t.y);
+    }
 }
 
 }  // namespace

@@ -39,6 +39,9 @@ class Integrator {
                          RayCounters& rays) const = 0;
     // The most draws of one decision a pixel sample makes (DecisionSite::repeatCount).
     virtual uint32_t decisionRepeats() const { return 1; }
+    // Whether the estimate accounts for participating media; the loader refuses a scene with
+    // media for an integrator that would silently ignore them.
+    virtual bool supportsMedia() const { return false; }
 };
 
 // The camera ray for pixel (x, y): film position, lens and shutter decisions are drawn only

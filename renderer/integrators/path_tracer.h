@@ -1,9 +1,22 @@
 // Unidirectional path tracing (Kajiya 1986) with two strategies for finding light:
-//  - `path`: BSDF sampling only; emission counts when a path hits an emitter.
-//  - `path_mis`: next-event estimation at every non-specular vertex plus BSDF sampling,
-//    combined with Veach's power heuristic (Veach & Guibas 1995).
-// Path length: `maxDepth` scattering events (−1: unlimited up to a safety cap), Russian
-// roulette from `rrDepth` on with survival probability min(1, max throughput · Πη²).
+//  - `path`: BSDF (and phase-function) sampling only; emission counts when a path hits an
+//    emitter.
+//  - `path_mis`: next-event estimation at every non-specular vertex, on surfaces and in media,
+//    plus BSDF or phase sampling, combined with Veach's power heuristic (Veach & Guibas 1995).
+// Path length: `maxDepth` scattering events, on surfaces or in media (−1: unlimited up to a
+// safety cap), Russian roulette from `rrDepth` on with survival probability
+// min(1, max throughput · Πη²).
+//
+// Participating media (the volume rendering equation; Pharr, Jakob & Humphreys, PBR 3rd ed.,
+// ch. 15): every segment inside a medium samples a free-flight distance (the MediumDistance
+// decision of the vertex it leads to). A collision makes a medium vertex: next-event estimation
+// with the phase function (path_mis), then the phase function samples the direction (the
+// BsdfDirection decision of that vertex). Passing the segment multiplies the throughput by Tr/S
+// (medium.h), which also attenuates emission found and radiance escaping to infinite lights; S
+// joins the BSDF or phase density in the MIS weights (it is the probability of reaching the light).
+// Shadow rays carry the transmittance of the media they cross. Shapes with an interior medium but
+// no material are index-matched boundaries: the path passes through them without a scattering
+// event. Scenes without media run a separately compiled walk that contains none of this.
 #pragma once
 
 #include "integrators/integrator.h"
@@ -28,13 +41,9 @@ class PathTracer final : public Integrator {
     nlohmann::json parameters() const override;
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;
+    bool supportsMedia() const override { return true; }
 
   private:
-    // Next-event estimate at a vertex, MIS-weighted against BSDF sampling.
-    Rgb sampleLight(const Scene& scene, const SurfaceHit& hit, const Material& material,
-                    const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
-                    const PixelSample& sample, uint32_t vertex, RayCounters& rays) const;
-
     PathSettings settings_;
     bool nee_;
 };

@@ -11,9 +11,12 @@ namespace fs = std::filesystem;
 void writeAtomically(const fs::path& destination,
                      const std::function<void(const fs::path&)>& write) {
     const fs::path dir = destination.has_parent_path() ? destination.parent_path() : fs::path(".");
-    const fs::path temporary =
-        dir / ("." + destination.stem().string() + ".tmp" + std::to_string(::getpid()) +
-               destination.extension().string());
+    // Appended piecewise: GCC 12's -Wrestrict misfires on `"." + std::string&&`.
+    std::string name = ".";
+    name += destination.stem().string();
+    name += ".tmp" + std::to_string(::getpid());
+    name += destination.extension().string();
+    const fs::path temporary = dir / name;
     try {
         write(temporary);
         fs::rename(temporary, destination);

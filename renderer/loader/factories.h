@@ -2,7 +2,9 @@
 // pattern). Adding a type = writing the class + one entry in the category's table.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "integrators/integrator.h"
 #include "integrators/path_tracer.h"
@@ -11,12 +13,23 @@
 #include "math/transform.h"
 #include "scene/light.h"
 #include "scene/material.h"
+#include "scene/medium.h"
 #include "scene/shape.h"
 
 namespace rr {
 
+// Materials made of other materials (mix, checker) refer to them by name or embed them: the
+// loader resolves such a reference (`reference`, found at JSON pointer `pointer`) to a material
+// that the scene owns.
+using MaterialReferences =
+    std::function<const Material*(const Json& reference, const std::string& pointer)>;
+
 // Material parameters may be textures; image textures are found through `assets`.
-std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& assets);
+std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& assets,
+                                       const MaterialReferences& references);
+
+// A participating medium: {"sigma_a", "sigma_s", "phase"} (configs/README.md, "Media").
+std::unique_ptr<Medium> makeMedium(ObjectReader& json);
 
 // Shapes are built in world space: `transform` is applied to their defining points.
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,

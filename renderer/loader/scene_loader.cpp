@@ -194,40 +194,63 @@ CameraSettings readCamera(ObjectReader& j) {
     return c;
 }
 
-// Reads the named material table; inline materials in shapes are added as they appear.
+// The named material table and inline materials. Named materials are built on first
+// reference, so that mix and checker materials may refer to any entry of the table whatever
+// its order, and every entry is built once; a chain of references that returns to a material
+// being built is an error.
 class MaterialCatalog {
   public:
     MaterialCatalog(const Json* table, const std::string& pointer, SceneBuilder& builder,
                     const AssetResolver& assets)
-        : builder_(builder), assets_(assets) {
+        : table_(table), pointer_(pointer), builder_(builder), assets_(assets) {
         if (!table) return;
-        ObjectReader j(*table, pointer);
-        for (const auto& item : table->items()) {
-            ObjectReader m(j.raw(item.key()), j.pointerTo(item.key()));
-            named_[item.key()] = builder_.addMaterial(makeMaterial(m, assets_));
-        }
-        j.finish();
+        if (!table->is_object()) throw ConfigError(pointer, "expected an object of materials");
+        for (const auto& item : table->items())  // unreferenced entries are checked too
+            named(item.key(), pointer);
     }
 
-    // A shape's "material": a name from the table or an inline object.
+    // A material reference at `pointer`: a name from the table or an inline object.
+    const Material* resolve(const Json& reference, const std::string& pointer) {
+        if (reference.is_object()) return build(reference, pointer);
+        if (!reference.is_string())
+            throw ConfigError(pointer, "expected a material name or object");
+        return named(reference.get<std::string>(), pointer);
+    }
+
+    // A shape's "material".
     const Material* resolve(ObjectReader& shape) {
-        const Json& ref = shape.raw("material");
-        if (ref.is_object()) {
-            ObjectReader m(ref, shape.pointerTo("material"));
-            return builder_.addMaterial(makeMaterial(m, assets_));
-        }
-        if (!ref.is_string()) shape.fail("material", "expected a material name or object");
-        const auto it = named_.find(ref.get<std::string>());
-        if (it == named_.end())
-            shape.fail("material",
-                       "no material named \"" + ref.get<std::string>() + "\" in /materials");
-        return it->second;
+        return resolve(shape.raw("material"), shape.pointerTo("material"));
     }
 
   private:
+    const Material* named(const std::string& name, const std::string& referrer) {
+        if (const auto it = named_.find(name); it != named_.end()) {
+            if (!it->second)
+                throw ConfigError(referrer, "material \"" + name + "\" refers back to itself");
+            return it->second;
+        }
+        if (!table_ || !table_->contains(name))
+            throw ConfigError(referrer, "no material named \"" + name + "\" in /materials");
+        named_[name] = nullptr;  // being built
+        const Material* material =
+            build(table_->at(name), pointer_ + "/" + escapePointerToken(name));
+        named_[name] = material;
+        return material;
+    }
+
+    const Material* build(const Json& description, const std::string& pointer) {
+        ObjectReader m(description, pointer);
+        const MaterialReferences references = [this](const Json& ref, const std::string& at) {
+            return resolve(ref, at);
+        };
+        return builder_.addMaterial(makeMaterial(m, assets_, references));
+    }
+
+    const Json* table_;
+    std::string pointer_;
     SceneBuilder& builder_;
     const AssetResolver& assets_;
-    std::map<std::string, const Material*> named_;
+    std::map<std::string, const Material*> named_;  // nullptr while being built
 };
 
 void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builder,
@@ -242,11 +265,17 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
         twoSided = ej.getBool("two_sided", false);
         ej.finish();
     }
+    const Medium* interior = nullptr;
+    if (const Json* m = j.rawOptional("interior_medium")) {
+        ObjectReader mj(*m, j.pointerTo("interior_medium"));
+        interior = builder.addMedium(makeMedium(mj));
+    }
     const Material* material = nullptr;
     if (j.has("material"))
         material = materials.resolve(j);
-    else if (emission.isBlack())
-        j.fail("material", "missing required key (only emitters may omit a material)");
+    else if (emission.isBlack() && !interior)
+        j.fail("material",
+               "missing required key (only emitters and medium boundaries may omit a material)");
 
     Vec3 motion(0.0f);
     if (const Json* m = j.rawOptional("motion")) {
@@ -266,6 +295,7 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
     if (!(shape->area() > 0) || !std::isfinite(shape->area()))
         j.fail("type", "the shape has zero or non-finite area");
     if (shutterOpenInterval) shape->setMotion(motion);
+    shape->setInteriorMedium(interior);
     builder.addShape(std::move(shape), material, emission, twoSided);
 }
 
@@ -306,6 +336,14 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     }
     builder.setCamera(camera, render.width, render.height);
 
+    // Where the first medium is declared, for the error if the integrator cannot render it.
+    std::string mediumPointer;
+    if (const Json* m = root.rawOptional("medium")) {
+        ObjectReader mj(*m, root.pointerTo("medium"));
+        builder.setSceneMedium(builder.addMedium(makeMedium(mj)));
+        mediumPointer = mj.pointer();
+    }
+
     MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder,
                               assets);
 
@@ -314,6 +352,8 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     for (size_t i = 0; i < shapes.size(); ++i) {
         ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
         readShape(sj, materials, builder, assets, camera);
+        if (mediumPointer.empty() && shapes[i].contains("interior_medium"))
+            mediumPointer = sj.pointerTo("interior_medium");
     }
 
     if (const Json* lights = root.rawOptional("lights")) {
@@ -332,6 +372,10 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         integrator = makeIntegrator(reader, path);
     }
     checkStructuredSampleCount(render, *integrator, root.pointerTo("render") + "/spp");
+    if (!mediumPointer.empty() && !integrator->supportsMedia())
+        throw ConfigError(mediumPointer, "the " + integrator->name() +
+                                             " integrator does not render participating media; "
+                                             "use \"path\" or \"path_mis\"");
     root.finish();
 
     LoadedScene loaded;

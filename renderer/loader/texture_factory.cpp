@@ -1,19 +1,147 @@
 #include "loader/texture_factory.h"
 
+#include <cmath>
+#include <optional>
+
+#include "io/rgb_image_io.h"
+#include "loader/type_table.h"
+#include "scene/textures/checker.h"
+#include "scene/textures/gradient.h"
+#include "scene/textures/image.h"
+
 namespace rr {
 
+namespace {
+
+// What differs between float and colour parameters: how a constant is read, how an image
+// texel becomes a value (a float parameter takes the texel's Rec. 709 luminance), and the
+// range check of a computed value.
+template <class T>
+struct ValueTraits;
+
+template <>
+struct ValueTraits<float> {
+    static float read(ObjectReader& j, const std::string& key, std::optional<float> fallback,
+                      Range range) {
+        return fallback ? j.getFloat(key, *fallback, range) : j.getFloat(key, range);
+    }
+    static float fromTexel(const Rgb& texel) { return texel.luminance(); }
+    static bool inRange(float v, const Range& range) {
+        return std::isfinite(v) && range.contains(v);
+    }
+    static std::string describe(float v) { return std::to_string(v); }
+};
+
+template <>
+struct ValueTraits<Rgb> {
+    static Rgb read(ObjectReader& j, const std::string& key, std::optional<Rgb> fallback,
+                    Range range) {
+        return fallback ? j.getRgb(key, *fallback, range) : j.getRgb(key, range);
+    }
+    static Rgb fromTexel(const Rgb& texel) { return texel; }
+    static bool inRange(const Rgb& v, const Range& range) {
+        for (int c = 0; c < 3; ++c)
+            if (!ValueTraits<float>::inRange(v[c], range)) return false;
+        return true;
+    }
+    static std::string describe(const Rgb& v) {
+        return "[" + std::to_string(v.r) + ", " + std::to_string(v.g) + ", " + std::to_string(v.b) +
+               "]";
+    }
+};
+
+template <class T>
+TexturePtr<T> readTexture(ObjectReader& json, const std::string& key, std::optional<T> fallback,
+                          Range range, const AssetResolver& assets);
+
+template <class T>
+std::unique_ptr<Texture<T>> makeChecker(ObjectReader& j, Range range, const AssetResolver& assets) {
+    TexturePtr<T> even = readTexture<T>(j, "even", std::nullopt, range, assets);
+    TexturePtr<T> odd = readTexture<T>(j, "odd", std::nullopt, range, assets);
+    return std::make_unique<CheckerTexture<T>>(std::move(even), std::move(odd),
+                                               readCheckerboard(j));
+}
+
+template <class T>
+std::unique_ptr<Texture<T>> makeGradient(ObjectReader& j, Range range, const AssetResolver&) {
+    const T from = ValueTraits<T>::read(j, "from", std::nullopt, range);
+    const T to = ValueTraits<T>::read(j, "to", std::nullopt, range);
+    const auto axis = j.getChoice("axis", {"u", "v"}, "v") == "u" ? GradientTexture<T>::Axis::U
+                                                                  : GradientTexture<T>::Axis::V;
+    return std::make_unique<GradientTexture<T>>(from, to, axis);
+}
+
+template <class T>
+std::unique_ptr<Texture<T>> makeImage(ObjectReader& j, Range range, const AssetResolver& assets) {
+    const std::string file = j.getString("file");
+    const float scale = j.getFloat("scale", 1.0f);
+    const auto path = assets.resolve(file);
+    if (!path)
+        j.fail("file", "image \"" + file + "\" not found; searched " + assets.describe() +
+                           " (put the file under assets/ or set RENDERER_ASSETS)");
+    RgbImage image;
+    try {
+        image = readRgbImage(*path);
+    } catch (const std::exception& e) {
+        j.fail("file", e.what());
+    }
+    if (image.width < 1 || image.height < 1) j.fail("file", "image \"" + file + "\" is empty");
+    std::vector<T> texels;
+    texels.reserve(image.pixels.size());
+    for (const Rgb& pixel : image.pixels) {
+        const T value = ValueTraits<T>::fromTexel(pixel * scale);
+        if (!ValueTraits<T>::inRange(value, range)) {
+            const size_t i = texels.size();
+            throw ConfigError(j.pointer(), "texel (" + std::to_string(i % image.width) + ", " +
+                                               std::to_string(i / image.width) + ") of \"" + file +
+                                               "\" × scale = " + ValueTraits<T>::describe(value) +
+                                               " is outside the parameter's range (" +
+                                               range.describe() + ")");
+        }
+        texels.push_back(value);
+    }
+    return std::make_unique<ImageTexture<T>>(image.width, image.height, std::move(texels));
+}
+
+template <class T>
+TexturePtr<T> makeTexture(ObjectReader& j, Range range, const AssetResolver& assets) {
+    static const TypeTable<Texture<T>, Range, const AssetResolver&> table{
+        {"checker", makeChecker<T>},
+        {"gradient", makeGradient<T>},
+        {"image", makeImage<T>},
+    };
+    return buildByType(j, "texture", table, range, assets);
+}
+
+// A texture object, or a constant (required when there is no fallback).
+template <class T>
+TexturePtr<T> readTexture(ObjectReader& json, const std::string& key, std::optional<T> fallback,
+                          Range range, const AssetResolver& assets) {
+    if (const Json* value = json.rawOptional(key); value && value->is_object()) {
+        ObjectReader texture(*value, json.pointerTo(key));
+        return makeTexture<T>(texture, range, assets);
+    }
+    return constantTexture(ValueTraits<T>::read(json, key, fallback, range));
+}
+
+}  // namespace
+
 TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key, float fallback,
-                                   Range range, const AssetResolver&) {
-    if (const Json* value = json.rawOptional(key); value && value->is_object())
-        json.fail(key, "texture objects are not supported yet");
-    return constantTexture(json.getFloat(key, fallback, range));
+                                   Range range, const AssetResolver& assets) {
+    return readTexture<float>(json, key, fallback, range, assets);
 }
 
 TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key, const Rgb& fallback,
-                               Range range, const AssetResolver&) {
-    if (const Json* value = json.rawOptional(key); value && value->is_object())
-        json.fail(key, "texture objects are not supported yet");
-    return constantTexture(json.getRgb(key, fallback, range));
+                               Range range, const AssetResolver& assets) {
+    return readTexture<Rgb>(json, key, fallback, range, assets);
+}
+
+Checkerboard readCheckerboard(ObjectReader& json) {
+    if (!json.has("squares")) return {};
+    const auto squares = json.getNumbers("squares", 2, Range::closed(1, 1e6));
+    if (squares[0] != std::floor(squares[0]) || squares[1] != std::floor(squares[1]))
+        json.fail("squares", "expected two integers");
+    return {int(squares[0]), int(squares[1])};
 }
 
 }  // namespace rr

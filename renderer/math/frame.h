@@ -20,6 +20,19 @@ struct Frame {
         t = Vec3(b, sign + n.y * n.y * a, -n.y);
     }
 
+    // z = `normal` (unit), x = `tangent` made orthogonal to it; falls back to Frame(normal)
+    // when the tangent is zero or (nearly) parallel to the normal.
+    static Frame fromNormalAndTangent(const Vec3& normal, const Vec3& tangent) {
+        const Vec3 inPlane = tangent - normal * dot(normal, tangent);
+        const float len2 = lengthSquared(inPlane);
+        if (!(len2 > 1e-12f * lengthSquared(tangent))) return Frame(normal);
+        Frame f;
+        f.n = normal;
+        f.s = inPlane / std::sqrt(len2);
+        f.t = cross(normal, f.s);
+        return f;
+    }
+
     Vec3 toLocal(const Vec3& w) const { return {dot(w, s), dot(w, t), dot(w, n)}; }
     Vec3 toWorld(const Vec3& w) const { return s * w.x + t * w.y + n * w.z; }
 };

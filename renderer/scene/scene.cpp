@@ -88,6 +88,15 @@ const Material* SceneBuilder::addMaterial(std::unique_ptr<Material> material) {
     return scene_->materials_.back().get();
 }
 
+const Medium* SceneBuilder::addMedium(std::unique_ptr<Medium> medium) {
+    scene_->media_.push_back(std::move(medium));
+    return scene_->media_.back().get();
+}
+
+void SceneBuilder::setSceneMedium(const Medium* medium) {
+    scene_->medium_ = medium;
+}
+
 void SceneBuilder::addShape(std::unique_ptr<Shape> shape, const Material* material,
                             const Rgb& emission, bool twoSidedEmission) {
     shape->setMaterial(material);
@@ -142,6 +151,9 @@ std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
 
     s.features_.motionBlur = anyMotion && s.camera_->hasShutterInterval();
     s.features_.thinLens = s.camera_->isThinLens();
+    s.features_.media = s.medium_ != nullptr;
+    for (const std::unique_ptr<Shape>& shape : s.shapes_)
+        s.features_.media = s.features_.media || shape->interiorMedium();
     s.lightSelector_ = makeLightSelector(selection, s.lights_);
     return std::move(scene_);
 }

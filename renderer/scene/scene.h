@@ -14,6 +14,7 @@
 #include "scene/light.h"
 #include "scene/light_selector.h"
 #include "scene/material.h"
+#include "scene/medium.h"
 #include "scene/shape.h"
 #include "scene/surface_hit.h"
 
@@ -25,7 +26,7 @@ class AreaLight;
 struct SceneFeatures {
     bool motionBlur = false;  // some shape moves and the shutter is open for a while
     bool thinLens = false;    // the camera has an aperture
-    bool media = false;       // participating media (none yet)
+    bool media = false;       // participating media: a scene medium or a shape's interior
 };
 
 class Scene {
@@ -43,6 +44,9 @@ class Scene {
     std::span<const Light* const> infiniteLights() const { return infiniteLights_; }
     const LightSelector& lightSelector() const { return *lightSelector_; }
     const SceneFeatures& features() const { return features_; }
+    // The medium filling the scene outside the shapes that have an interior medium (nullptr:
+    // vacuum). It fills all space, so it also attenuates infinite lights.
+    const Medium* medium() const { return medium_; }
 
   private:
     friend class SceneBuilder;
@@ -50,6 +54,8 @@ class Scene {
 
     std::unique_ptr<Camera> camera_;
     std::vector<std::unique_ptr<Material>> materials_;
+    std::vector<std::unique_ptr<Medium>> media_;
+    const Medium* medium_ = nullptr;
     std::vector<std::unique_ptr<Shape>> shapes_;  // index = Embree geometry id
     std::vector<std::unique_ptr<Light>> ownedLights_;
     std::vector<const Light*> lights_;
@@ -66,7 +72,11 @@ class SceneBuilder {
 
     // Materials are owned by the scene; the returned pointer stays valid.
     const Material* addMaterial(std::unique_ptr<Material> material);
-    // Adds a shape with its material; a non-black `emission` makes it an area light.
+    // Media are owned by the scene too: the scene's medium and shapes' interiors point to them.
+    const Medium* addMedium(std::unique_ptr<Medium> medium);
+    void setSceneMedium(const Medium* medium);
+    // Adds a shape with its material (and its interior medium, if set on the shape); a
+    // non-black `emission` makes it an area light.
     void addShape(std::unique_ptr<Shape> shape, const Material* material, const Rgb& emission,
                   bool twoSidedEmission);
     void addLight(std::unique_ptr<Light> light);

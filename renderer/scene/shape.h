@@ -12,6 +12,7 @@ namespace rr {
 
 class Material;
 class AreaLight;
+class Medium;
 
 // A point on a shape chosen by a light-sampling strategy; `pdf` is per unit solid angle as
 // seen from the reference point.
@@ -53,6 +54,13 @@ class Shape {
     const Material* material() const { return material_; }
     void setAreaLight(const AreaLight* l) { areaLight_ = l; }
     const AreaLight* areaLight() const { return areaLight_; }
+    // The medium filling the shape's inside, the side opposite its geometric normal (closed
+    // shapes with outward normals); nullptr: the shape does not change the medium.
+    void setInteriorMedium(const Medium* m) { interiorMedium_ = m; }
+    const Medium* interiorMedium() const { return interiorMedium_; }
+    // An index-matched boundary of a medium: no material, so rays pass through it unchanged
+    // and only the medium changes.
+    bool isMediumBoundary() const { return !material_ && interiorMedium_; }
 
   protected:
     // Uploads `count` vertices (one or two time steps) into an Embree vertex buffer.
@@ -62,6 +70,7 @@ class Shape {
     Vec3 motion_;
     const Material* material_ = nullptr;
     const AreaLight* areaLight_ = nullptr;
+    const Medium* interiorMedium_ = nullptr;
 };
 
 // Converts an area density at `position` (normal `normal`) seen from `reference` to solid angle.

@@ -14,12 +14,17 @@ struct SurfaceHit {
     Vec3 geometricNormal;  // unit; the shape's outward side
     Vec3 shadingNormal;    // unit; same side as geometricNormal
     Vec2 uv;
+    // Direction of increasing u on the surface (∂p/∂u, any length), or zero where the shape has
+    // none. Anisotropic materials orient their u axis along it.
+    Vec3 tangent;
     float distance = 0;
     float time = 0;
     float errorScale = 0;  // magnitude of the coordinates `position` was computed from
     const Shape* shape = nullptr;
 
-    Frame shadingFrame() const { return Frame(shadingNormal); }
+    // The local shading frame: z = shading normal, x = the tangent projected onto the tangent
+    // plane (an arbitrary but continuous-per-normal axis where there is no usable tangent).
+    Frame shadingFrame() const { return Frame::fromNormalAndTangent(shadingNormal, tangent); }
 
     // A ray leaving this surface in direction `dir` (unit).
     Ray spawn(const Vec3& dir) const {

@@ -27,6 +27,7 @@ class ConstantTexture final : public Texture<T> {
   public:
     explicit ConstantTexture(const T& value) : value_(value) {}
     T eval(const ShadingContext&) const override { return value_; }
+    const T& value() const { return value_; }
 
   private:
     T value_;
@@ -35,6 +36,14 @@ class ConstantTexture final : public Texture<T> {
 template <class T>
 TexturePtr<T> constantTexture(const T& value) {
     return std::make_shared<ConstantTexture<T>>(value);
+}
+
+// The value of a constant texture, or nullptr when the texture varies: for load-time checks
+// of combinations of parameters (Phong's kd + ks ≤ 1) that only constants allow.
+template <class T>
+const T* constantValue(const TexturePtr<T>& texture) {
+    const auto* constant = dynamic_cast<const ConstantTexture<T>*>(texture.get());
+    return constant ? &constant->value() : nullptr;
 }
 
 }  // namespace rr

@@ -73,20 +73,23 @@ BsdfSamplingRun sampleBsdf(const Material& material, const ShadingContext& ctx, 
         }
         histogram.add(cap.toLocal(s.wi));
     }
-    // Declined samples are part of the distribution: pdf() integrates to one minus the
-    // probability of declining (a microfacet normal that reflects wo below the surface).
-    const double drawn = samples - run.specular - run.nonFinite;
+    // pdf() is the density of the non-specular directions sample() returns, relative to all
+    // its draws: a sampler may decline a draw (a lobe direction below the surface, a sample
+    // of zero value) or return a specular lobe, and pdf() then integrates to less than one.
+    // Those draws join the directions outside the cap in the extra cell, which expects the
+    // mass pdf() does not hold: for the whole sphere and a sampler that never declines, zero
+    // up to the integration error. That error (~10⁻⁶ of the total) is the least the cell can
+    // be told to expect, so that a draw declined on a set of measure zero (a direction that
+    // rounds onto the horizon) is not taken for a sample where the density is zero.
+    const double drawn = samples - run.nonFinite;
     std::vector<double> expected = histogram.expected(
         [&](const Vec3& w) { return double(material.pdf(ctx, wo, cap.toWorld(w))); }, drawn);
-    // The last cell holds the directions outside the cap and the declined samples, and
-    // expects whatever mass the cells do not hold (for the whole sphere, the declines; the
-    // integration error must not turn into a negative expectation).
     double inside = 0;
     for (size_t i = 0; i + 1 < expected.size(); ++i)
         inside += expected[i];
-    expected.back() = std::max(0.0, drawn - inside);
+    expected.back() = std::max(1e-6 * drawn, drawn - inside);
     std::vector<double> observed = histogram.counts();
-    observed.back() += run.declined;
+    observed.back() += run.declined + run.specular;
     run.outcome = chi2GoodnessOfFit(observed, expected);
     return run;
 }

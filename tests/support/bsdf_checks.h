@@ -17,11 +17,10 @@ namespace rr::test {
 
 // Where to histogram sampled directions: a cap of half-angle `capDegrees` around `axis`
 // (local shading frame), divided into zCells × phiCells equal-solid-angle cells, plus one cell
-// for everything outside the cap and every declined sample, whose expected count is the
-// complement of the cells' (sample() may decline where its pdf() has no mass, e.g. microfacet
-// normals that reflect below the surface: pdf() then integrates to less than one). The default
-// is the whole sphere. Zoom onto a narrow lobe (exponent 1000, roughness 0.001) by centring
-// the cap on its peak, so that the cells resolve it.
+// for everything outside the cap, together with the declined and specular samples, whose
+// expected count is the complement of pdf()'s mass in the cap. The default is the whole
+// sphere. Zoom onto a narrow lobe (exponent 1000, roughness 0.001) by centring the cap on
+// its peak, so that the cells resolve it.
 struct BsdfHistogramLayout {
     Vec3 axis = Vec3(0, 0, 1);
     double capDegrees = 180;

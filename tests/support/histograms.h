@@ -1,7 +1,8 @@
 // Histograms over the domains of the warps and sampling routines, with the expected count of
-// each cell obtained by integrating the claimed density numerically: the midpoint rule on a
-// 16² sub-grid, refined to 96² on cells at the edge of the support (cells where the density
-// is zero at some sub-points only, and empty cells beside non-empty ones). The outline of a
+// each cell obtained by integrating the claimed density numerically: a 16 × 16-point
+// Gauss–Legendre product rule (accurate for smooth, peaked densities), and the midpoint rule on
+// a 96² sub-grid on cells at the edge of the support (cells where the density is zero at some
+// nodes only, and empty cells beside non-empty ones). The outline of a
 // light or a warp's domain crosses cells; a cell holding a sliver of the support must not be
 // given an expected count of zero, and its mass must be accurate.
 #pragma once

@@ -4,9 +4,9 @@
 
 namespace rr {
 
-Rgb Lambert::eval(const ShadingContext&, const Vec3& wo, const Vec3& wi) const {
+Rgb Lambert::eval(const ShadingContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z * wi.z <= 0) return Rgb(0.0f);  // two-sided: both on the same side
-    return albedo_ * (kInvPi * std::abs(wi.z));
+    return albedo_->eval(ctx) * (kInvPi * std::abs(wi.z));
 }
 
 float Lambert::pdf(const ShadingContext&, const Vec3& wo, const Vec3& wi) const {
@@ -14,7 +14,7 @@ float Lambert::pdf(const ShadingContext&, const Vec3& wo, const Vec3& wi) const 
     return std::abs(wi.z) * kInvPi;
 }
 
-bool Lambert::sample(const ShadingContext&, const Vec3& wo, float, Vec2 uDirection,
+bool Lambert::sample(const ShadingContext& ctx, const Vec3& wo, float, Vec2 uDirection,
                      BsdfSample* out) const {
     if (wo.z == 0) return false;
     Vec3 wi = squareToCosineHemisphere(uDirection);
@@ -22,7 +22,7 @@ bool Lambert::sample(const ShadingContext&, const Vec3& wo, float, Vec2 uDirecti
     if (wo.z < 0) wi.z = -wi.z;
     out->wi = wi;
     out->pdf = std::abs(wi.z) * kInvPi;
-    out->weight = albedo_;  // (ρ/π)·cos θ / (cos θ/π)
+    out->weight = albedo_->eval(ctx);  // (ρ/π)·cos θ / (cos θ/π)
     out->lobe = kReflection | kDiffuse;
     return true;
 }

@@ -36,6 +36,7 @@ void Quad::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     out->errorScale = errorScale_ + motionScale();
     out->geometricNormal = normal_;
     out->shadingNormal = normal_;
+    out->tangent = edgeU_;
 }
 
 ShapeSample Quad::sampleArea(Vec2 u) const {

@@ -110,6 +110,7 @@ void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     out->shadingNormal = n;
     const float phi = std::atan2(n.y, n.x);
     out->uv = Vec2((phi < 0 ? phi + kTwoPi : phi) / kTwoPi, safeAcos(n.z) * kInvPi);
+    out->tangent = Vec3(-n.y, n.x, 0);  // ∂p/∂φ: along the parallels (zero at the poles)
 }
 
 ShapeSample Sphere::sampleArea(Vec2 u) const {
