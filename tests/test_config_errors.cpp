@@ -151,6 +151,80 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"spp times light_samples beyond 2^24",
                  {"/render/spp=32768", "/integrator={\"type\":\"direct\",\"light_samples\":1024}"},
                  "/render/spp"},
+        BadInput{
+            "polygon with two vertices",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices"},
+        BadInput{
+            "polygon vertex not a point",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0],[0,1,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices/1"},
+        BadInput{
+            "polygon off its plane",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[2,0,0],[2.5,1,0.05],[1,2,0],[-0.5,1,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices/2"},
+        BadInput{
+            "non-convex polygon",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[2,0,0],[1,0.5,0],[2,2,0],[0,2,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices/2"},
+        BadInput{
+            "self-intersecting polygon (pentagram)",
+            {R"(/shapes/0={"type":"polygon","vertices":[[1,0,0],[-0.809,0.588,0],[0.309,-0.951,0],[0.309,0.951,0],[-0.809,-0.588,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices"},
+        BadInput{
+            "polygon of collinear points",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,1,1],[2,2,2]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices"},
+        BadInput{
+            "polygon with a repeated vertex",
+            {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0,0],[1,0,0],[0,1,0]],"emission":{"radiance":1}})"},
+            "/shapes/0/vertices/2"},
+        BadInput{
+            "spot falloff beyond the cone",
+            {R"(/lights/0={"type":"spot","position":[0,2,0],"look_at":[0,0,0],"intensity":1,"cone_angle":20,"falloff_start":30})"},
+            "/lights/0/falloff_start"},
+        BadInput{
+            "spot cone of zero",
+            {R"(/lights/0={"type":"spot","position":[0,2,0],"look_at":[0,0,0],"intensity":1,"cone_angle":0})"},
+            "/lights/0/cone_angle"},
+        BadInput{
+            "spot cone beyond 90 degrees",
+            {R"(/lights/0={"type":"spot","position":[0,2,0],"look_at":[0,0,0],"intensity":1,"cone_angle":91})"},
+            "/lights/0/cone_angle"},
+        BadInput{
+            "spot looking at itself",
+            {R"(/lights/0={"type":"spot","position":[0,2,0],"look_at":[0,2,0],"intensity":1,"cone_angle":30})"},
+            "/lights/0/look_at"},
+        BadInput{
+            "environment with radiance and file",
+            {R"(/lights/0={"type":"environment","radiance":1,"file":"envmaps/x.hdr","layout":"probe"})"},
+            "/lights/0/radiance"},
+        BadInput{"environment map without layout",
+                 {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr"})"},
+                 "/lights/0/layout"},
+        BadInput{"environment map of unknown layout",
+                 {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr","layout":"cube"})"},
+                 "/lights/0/layout"},
+        BadInput{
+            "environment map scaled",
+            {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr","layout":"probe","transform":{"scale":2}})"},
+            "/lights/0/transform"},
+        BadInput{
+            "environment map translated",
+            {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr","layout":"probe","transform":{"translate":[0,1,0]}})"},
+            "/lights/0/transform"},
+        BadInput{
+            "environment map mirrored",
+            {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr","layout":"probe","transform":{"matrix":[-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})"},
+            "/lights/0/transform"},
+        BadInput{
+            "environment map missing",
+            {R"(/lights/0={"type":"environment","file":"envmaps/nothing.hdr","layout":"probe"})"},
+            "/lights/0/file"},
+        BadInput{
+            "environment map with negative scale",
+            {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr","layout":"probe","scale":-1})"},
+            "/lights/0/scale"},
         BadInput{"spp times bsdf_samples beyond 2^24",
                  {"/render/spp=65536", "/integrator={\"type\":\"direct\",\"bsdf_samples\":512}"},
                  "/render/spp"}),

@@ -14,7 +14,9 @@
 #include "math/frame.h"
 #include "sampling/hash.h"
 #include "scene/lights/area_light.h"
+#include "scene/lights/spot_light.h"
 #include "scene/shape.h"
+#include "scene/shapes/polygon.h"
 #include "scene/shapes/triangle_mesh.h"
 #include "support/chi2.h"
 #include "support/histograms.h"
@@ -25,9 +27,9 @@ namespace rr::test {
 namespace {
 
 // Every χ² run in this file: sphere from outside at 3 distances, from inside, quad, disk,
-// two-sided disk from behind, triangle-mesh roof (8 light-sampling runs), uniform and power
-// selection (2), and 3 negative controls.
-constexpr int kRuns = 13;
+// two-sided disk from behind, triangle-mesh roof, polygon (9 light-sampling runs), polygon
+// area samples on its plane (1), uniform and power selection (2), and 4 negative controls.
+constexpr int kRuns = 16;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
@@ -283,6 +285,143 @@ TEST(MeshLight, DirectionsFollowPdf) {
     expectLightFits(run, "triangle-mesh roof");
 }
 
+// --- Polygon lights ---------------------------------------------------------------------------
+
+// A convex pentagon with fan triangles of different areas, in a tilted plane: (x, y) in the
+// frame of kPolygonNormal around kPolygonCenter.
+const Vec3 kPolygonCenter(0.2f, -0.1f, 0.4f);
+const Vec3 kPolygonNormal = normalize(Vec3(-0.3f, 0.2f, 1.0f));
+const std::vector<Vec2> kPolygonXY = {
+    {-1, -0.6f}, {0.8f, -0.8f}, {1.2f, 0.3f}, {0.2f, 1}, {-0.9f, 0.5f}};
+std::vector<Vec3> polygonVertices() {
+    const Frame f(kPolygonNormal);
+    std::vector<Vec3> v;
+    for (const Vec2& p : kPolygonXY)
+        v.push_back(kPolygonCenter + f.toWorld(Vec3(p.x, p.y, 0)));
+    return v;
+}
+// Shoelace area of the (x, y) outline.
+double polygonArea() {
+    double a = 0;
+    for (size_t i = 0; i < kPolygonXY.size(); ++i) {
+        const Vec2 &p = kPolygonXY[i], &q = kPolygonXY[(i + 1) % kPolygonXY.size()];
+        a += 0.5 * (double(p.x) * q.y - double(q.x) * p.y);
+    }
+    return a;
+}
+std::string polygonJson() {
+    std::string vertices;
+    char buffer[128];
+    for (const Vec3& v : polygonVertices()) {
+        std::snprintf(buffer, sizeof buffer, "%s[%.9g, %.9g, %.9g]", vertices.empty() ? "" : ", ",
+                      v.x, v.y, v.z);
+        vertices += buffer;
+    }
+    return R"({"type": "polygon", "vertices": [)" + vertices +
+           R"(], "emission": {"radiance": [1, 2, 3]}})";
+}
+
+// In front of the polygon, placed so that every vertex is over a tenth of a cell from the edges
+// of the histogram's cells (a vertex just across a cell edge would put a sliver of the support
+// in a cell the quadrature sees as empty).
+const Vec3 kPolygonReference =
+    kPolygonCenter + Frame(kPolygonNormal).toWorld(Vec3(0.4f, 0.1f, 0.9f));
+
+// Is (x, y) inside the convex, counter-clockwise outline?
+bool insidePolygon(const Vec2& p) {
+    for (size_t i = 0; i < kPolygonXY.size(); ++i) {
+        const Vec2 &a = kPolygonXY[i], &b = kPolygonXY[(i + 1) % kPolygonXY.size()];
+        if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < 0) return false;
+    }
+    return true;
+}
+
+TEST(PolygonLight, DirectionsFollowPdf) {
+    const LoadedScene s = makeScene(polygonJson());
+    const Light& light = *s.scene->lights()[0];
+    const Vec3 reference = kPolygonReference;
+    const Vec3 axis = -kPolygonNormal;
+    const DirectionCells cells{30, 48, lowestZ(reference, axis, polygonVertices())};
+    for (const Vec3& v : polygonVertices()) {
+        const Vec3 w = Frame(axis).toLocal(normalize(v - reference));
+        const double phi = std::atan2(w.y, w.x) + (w.y < 0 ? 2 * M_PI : 0);
+        for (double f : {(w.z - cells.zMin) / (1 - cells.zMin) * cells.zCells,
+                         phi / (2 * M_PI) * cells.phiCells})
+            EXPECT_GT(std::min(f - std::floor(f), std::ceil(f) - f), 0.1)
+                << "vertex near a cell edge";
+    }
+    const LightRun run = runLightChi2(*s.scene, light, reference, axis, cells, 47);
+    expectLightFits(run, "polygon");
+}
+
+// Area samples, in the polygon's (x, y) coordinates, against the uniform density 1/A on it
+// (or against `pdf`, for the negative control).
+Chi2Outcome polygonAreaChi2(const std::function<double(const Vec2&)>& pdf) {
+    const Polygon polygon(polygonVertices());
+    const Frame f(kPolygonNormal);
+    PlaneHistogram h(40, 40, -1.1, 1.3, -0.9, 1.1);
+    for (int i = 0; i < kSamples; ++i) {
+        const ShapeSample s = polygon.sampleArea(uniform2(48, i));
+        const Vec3 local = f.toLocal(s.position - kPolygonCenter);
+        EXPECT_LT(std::abs(local.z), 1e-5f);
+        h.add(Vec2(local.x, local.y));
+    }
+    return chi2GoodnessOfFit(h.counts(), h.expected(pdf, kSamples));
+}
+
+TEST(PolygonShape, AreaSamplesAreUniform) {
+    const Polygon polygon(polygonVertices());
+    EXPECT_NEAR(polygon.area(), polygonArea(), 1e-5 * polygonArea());
+    EXPECT_GT(dot(polygon.normal(), kPolygonNormal), 0.99999f) << "right-hand rule on the order";
+    kChi2.expectFits(
+        polygonAreaChi2([](const Vec2& p) { return insidePolygon(p) ? 1 / polygonArea() : 0.0; }),
+        "polygon area samples");
+}
+
+// Validation tolerances are relative to the polygon's size: a vertex on an edge (collinear)
+// and a lift of 1e-5 of the size are accepted at any scale; 1e-3 is not, nor a clockwise dent.
+TEST(PolygonShape, ValidationIsRelativeToSize) {
+    for (float scale : {1e-4f, 1.0f, 1e4f}) {
+        const auto square = [&](float lift) {
+            return std::vector<Vec3>{Vec3(0, 0, 0) * scale, Vec3(1, 0, 0) * scale,
+                                     Vec3(2, 0, lift) * scale, Vec3(2, 2, 0) * scale,
+                                     Vec3(0, 2, 0) * scale};
+        };
+        EXPECT_FALSE(checkConvexPolygon(square(2e-5f))) << scale;
+        const auto lifted = checkConvexPolygon(square(2e-3f));
+        ASSERT_TRUE(lifted) << scale;
+        EXPECT_EQ(lifted->vertex, 2);
+        std::vector<Vec3> dented = square(0);
+        dented[1] = Vec3(1, 0.1f, 0) * scale;
+        const auto dent = checkConvexPolygon(dented);
+        ASSERT_TRUE(dent) << scale;
+        EXPECT_EQ(dent->vertex, 1);
+    }
+}
+
+// uv: a rectangle given as a polygon has the uv of the same quad; hit points agree.
+TEST(PolygonShape, RectangleUvIsTheQuads) {
+    const LoadedScene quad = makeScene(kQuad);
+    const LoadedScene polygon = makeScene(
+        R"({"type": "polygon", "vertices": [[-1, -0.5, 0], [1, -0.5, 0], [1, 1, 0.3], [-1, 1, 0.3]],
+            "emission": {"radiance": [1, 2, 3]}})");
+    const Vec3 normal = normalize(cross(kQuadU, kQuadV));
+    for (int i = 0; i < 1000; ++i) {
+        const Vec2 st = uniform2(49, i);
+        const Vec3 target = kQuadCorner + kQuadU * st.x + kQuadV * st.y;
+        const Ray ray{target + normal * 2 + Vec3(0.1f, 0.2f, 0),
+                      normalize(-normal * 2 - Vec3(0.1f, 0.2f, 0))};
+        SurfaceHit a, b;
+        ASSERT_TRUE(quad.scene->intersect(ray, &a));
+        ASSERT_TRUE(polygon.scene->intersect(ray, &b));
+        EXPECT_NEAR(a.uv.x, st.x, 1e-5f);
+        EXPECT_NEAR(b.uv.x, a.uv.x, 1e-5f);
+        EXPECT_NEAR(b.uv.y, a.uv.y, 1e-5f);
+        EXPECT_LT(length(a.position - b.position), 1e-5f);
+        EXPECT_GT(dot(b.geometricNormal, normal), 0.99999f);
+    }
+}
+
 // --- Negative controls ------------------------------------------------------------------------
 
 // Cone samples judged with the area-sampling density (a sample/pdf strategy mismatch).
@@ -328,6 +467,25 @@ TEST(LightChi2NegativeControl, QuadSamplesRejectPdfWithoutCosine) {
     kChi2.expectRejects(run.outcome, "quad samples vs pdf without cosine");
 }
 
+// Polygon area samples judged with the density of picking each fan triangle with equal
+// probability (the triangles' areas differ): the fan selection by area is under test.
+TEST(LightChi2NegativeControl, PolygonSamplesRejectEqualFanTriangles) {
+    const auto cross2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+        return double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x);
+    };
+    const size_t triangles = kPolygonXY.size() - 2;
+    const auto equalFan = [&](const Vec2& p) {
+        const Vec2& v0 = kPolygonXY[0];
+        for (size_t k = 1; k + 1 < kPolygonXY.size(); ++k) {
+            const Vec2 &a = kPolygonXY[k], &b = kPolygonXY[k + 1];
+            if (cross2(v0, a, p) >= 0 && cross2(a, b, p) >= 0 && cross2(b, v0, p) >= 0)
+                return 1 / (triangles * 0.5 * cross2(v0, a, b));
+        }
+        return 0.0;
+    };
+    kChi2.expectRejects(polygonAreaChi2(equalFan), "polygon area samples vs equal fan triangles");
+}
+
 // --- Sample values: radiance, pdf at the sampled point ------------------------------------------
 
 struct LightCase {
@@ -349,6 +507,7 @@ TEST(LightSamples, RadianceAndPdfMatchTheLight) {
         {"disk", diskJson(false), kDiskCenter + Frame(kDiskNormal).toWorld(Vec3(0.5f, 0.2f, 0.7f))},
         {"disk, two-sided from behind", diskJson(true),
          kDiskCenter + Frame(kDiskNormal).toWorld(Vec3(1.1f, -0.4f, -0.5f))},
+        {"polygon", polygonJson(), kPolygonReference},
     };
     for (const LightCase& c : cases) {
         const LoadedScene s = makeScene(c.shape);
@@ -449,6 +608,100 @@ TEST(PointLight, GivesIntensityOverDistanceSquared) {
     EXPECT_NEAR(light.power().b, 6 * 4 * kPi, 1e-4f);
 }
 
+// Spot lights: I(θ) = I₀ inside falloff_start, 0 outside cone_angle, smoothstep in cos θ
+// between (the test's own statement of the documented profile).
+double spotProfile(double cosTheta, double coneDegrees, double startDegrees) {
+    const double cosCone = std::cos(coneDegrees * M_PI / 180);
+    const double cosStart = std::cos(startDegrees * M_PI / 180);
+    if (cosTheta >= cosStart) return 1;
+    if (cosTheta <= cosCone) return 0;
+    const double x = (cosTheta - cosCone) / (cosStart - cosCone);
+    return x * x * (3 - 2 * x);
+}
+
+struct SpotCase {
+    double cone, start;  // degrees
+};
+const Vec3 kSpotPosition(0.5f, 1, -0.5f), kSpotTarget(0.2f, -1, 0.3f);
+const Rgb kSpotIntensity(4, 5, 6);
+
+LoadedScene spotScene(const SpotCase& c, bool withStart = true) {
+    return makeScene("", R"({"type": "spot", "position": [0.5, 1, -0.5], "look_at": [0.2, -1, 0.3],
+                             "intensity": [4, 5, 6], "cone_angle": )" +
+                             std::to_string(c.cone) +
+                             (withStart ? R"(, "falloff_start": )" + std::to_string(c.start) : "") +
+                             "}");
+}
+
+// The radiant intensity radiance · d² seen from a point at distance d in the direction that
+// makes angle θ with the axis (0 when sample() gives nothing).
+double spotIntensity(const Light& light, double cosTheta, double phi, double d, int channel) {
+    const Frame f(normalize(kSpotTarget - kSpotPosition));
+    const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+    const Vec3 w = f.toWorld(
+        Vec3(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta)));
+    LightSample ls;
+    if (!light.sample(kSpotPosition + w * float(d), Vec2(0.3f, 0.6f), 0, &ls)) return 0;
+    EXPECT_TRUE(ls.isDelta);
+    EXPECT_EQ(ls.pdf, 1.0f);
+    EXPECT_EQ(ls.position, kSpotPosition);
+    EXPECT_NEAR(dot(ls.direction, -w), 1.0f, 1e-6f);
+    return ls.radiance[channel] * d * d;
+}
+
+TEST(SpotLight, IntensityFollowsTheProfile) {
+    for (const SpotCase c : {SpotCase{30, 20}, SpotCase{30, 30}, SpotCase{90, 0}, SpotCase{2, 1}}) {
+        const LoadedScene s = spotScene(c);
+        const Light& light = *s.scene->lights()[0];
+        EXPECT_TRUE(light.isDelta());
+        const double cosCone = std::cos(c.cone * M_PI / 180);
+        for (int k = 0; k <= 400; ++k) {
+            // Angles from 0 to 1.2 × the cone, and the distances 0.5 and 3.
+            const double theta = 1.2 * c.cone * M_PI / 180 * k / 400;
+            const double expected = 5 * spotProfile(std::cos(theta), c.cone, c.start);
+            for (double d : {0.5, 3.0}) {
+                const double i = spotIntensity(light, std::cos(theta), 0.1 * k, d, 1);
+                EXPECT_NEAR(i, expected, 1e-5 * 5 + 2e-3 * expected)
+                    << "cone " << c.cone << ", start " << c.start << ", θ = " << theta;
+            }
+        }
+        EXPECT_EQ(spotIntensity(light, cosCone - 1e-3, 0, 1, 1), 0) << "outside the cone";
+        EXPECT_EQ(spotIntensity(light, -0.5, 0, 1, 1), 0) << "behind";
+    }
+    // falloff_start defaults to cone_angle: a hard edge.
+    const LoadedScene hard = spotScene({25, 0}, false);
+    const double cos25 = std::cos(25 * M_PI / 180);
+    EXPECT_NEAR(spotIntensity(*hard.scene->lights()[0], cos25 + 1e-4, 0, 1, 0), 4, 1e-5);
+    EXPECT_EQ(spotIntensity(*hard.scene->lights()[0], cos25 - 1e-4, 0, 1, 0), 0);
+}
+
+// power() is the intensity integrated over the sphere, measured through sample(): a midpoint
+// rule in (cos θ, φ) split at cos θc and cos θs, where the profile has kinks.
+TEST(SpotLight, PowerIsTheIntegralOfTheIntensity) {
+    for (const SpotCase c : {SpotCase{30, 20}, SpotCase{30, 30}, SpotCase{90, 0}, SpotCase{2, 1},
+                             SpotCase{60, 59.9}}) {
+        const LoadedScene s = spotScene(c);
+        const Light& light = *s.scene->lights()[0];
+        const double breaks[] = {-1, std::cos(c.cone * M_PI / 180), std::cos(c.start * M_PI / 180),
+                                 1};
+        constexpr int kMu = 400, kPhi = 16;
+        double integral = 0;
+        for (int piece = 0; piece < 3; ++piece) {
+            const double lo = breaks[piece], hi = breaks[piece + 1];
+            for (int a = 0; a < kMu; ++a)
+                for (int b = 0; b < kPhi; ++b)
+                    integral += spotIntensity(light, lo + (a + 0.5) / kMu * (hi - lo),
+                                              (b + 0.5) / kPhi * 2 * M_PI, 1.0, 2) *
+                                (hi - lo) / kMu * (2 * M_PI / kPhi);
+        }
+        const double closedForm =
+            6 * M_PI * (2 - std::cos(c.start * M_PI / 180) - std::cos(c.cone * M_PI / 180));
+        EXPECT_NEAR(light.power().b, integral, 1e-4 * integral) << c.cone << ", " << c.start;
+        EXPECT_NEAR(light.power().b, closedForm, 1e-5 * closedForm) << c.cone << ", " << c.start;
+        EXPECT_NEAR(light.power().r / light.power().b, 4.0 / 6, 1e-6);
+    }
+}
+
 TEST(AreaLight, PowerIsPiTimesAreaTimesRadiance) {
     struct Case {
         std::string shape;
@@ -464,6 +717,7 @@ TEST(AreaLight, PowerIsPiTimesAreaTimesRadiance) {
          quadArea, true},
         {diskJson(false), kPi * kDiskRadius * kDiskRadius, false},
         {diskJson(true), kPi * kDiskRadius * kDiskRadius, true},
+        {polygonJson(), float(polygonArea()), false},
     };
     for (const Case& c : cases) {
         const LoadedScene s = makeScene(c.shape);

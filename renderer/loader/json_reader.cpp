@@ -152,22 +152,45 @@ std::string ObjectReader::getChoice(const std::string& key,
     fail(key, "unknown value \"" + s + "\", expected one of " + list);
 }
 
-std::vector<double> ObjectReader::getNumbers(const std::string& key, size_t count, Range range) {
-    const Json& v = raw(key);
+namespace {
+
+// The elements of `v`, an array of `count` real numbers at JSON pointer `at`.
+std::vector<double> checkedNumbers(const Json& v, const std::string& at, size_t count,
+                                   Range range) {
     if (!v.is_array() || v.size() != count)
-        fail(key, "expected an array of " + std::to_string(count) + " numbers");
+        throw ConfigError(at, "expected an array of " + std::to_string(count) + " numbers");
     std::vector<double> out;
     for (size_t i = 0; i < count; ++i) {
         const Json& e = v[i];
-        const std::string at = pointerTo(key) + "/" + std::to_string(i);
+        const std::string element = at + "/" + std::to_string(i);
         if (!e.is_number() || !std::isfinite(e.get<double>()))
-            throw ConfigError(at, "expected a finite number, got " + typeName(e));
+            throw ConfigError(element, "expected a finite number, got " + typeName(e));
         const double d = e.get<double>();
-        if (!hasSafeMagnitude(d)) throw ConfigError(at, magnitudeMessage(d));
+        if (!hasSafeMagnitude(d)) throw ConfigError(element, magnitudeMessage(d));
         if (!range.contains(d))
-            throw ConfigError(at,
+            throw ConfigError(element,
                               "expected a number " + range.describe() + ", got " + formatNumber(d));
         out.push_back(d);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<double> ObjectReader::getNumbers(const std::string& key, size_t count, Range range) {
+    return checkedNumbers(raw(key), pointerTo(key), count, range);
+}
+
+std::vector<Vec3> ObjectReader::getVec3Array(const std::string& key, size_t minCount) {
+    const Json& v = raw(key);
+    if (!v.is_array() || v.size() < minCount)
+        fail(key,
+             "expected an array of at least " + std::to_string(minCount) + " points [x, y, z]");
+    std::vector<Vec3> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const auto c =
+            checkedNumbers(v[i], pointerTo(key) + "/" + std::to_string(i), 3, Range::any());
+        out.emplace_back(float(c[0]), float(c[1]), float(c[2]));
     }
     return out;
 }

@@ -1,9 +1,87 @@
+#include <cmath>
+
+#include "io/rgb_image_io.h"
 #include "loader/factories.h"
 #include "loader/type_table.h"
 #include "scene/lights/constant_environment.h"
+#include "scene/lights/environment_map.h"
 #include "scene/lights/point_light.h"
+#include "scene/lights/spot_light.h"
 
 namespace rr {
+
+namespace {
+
+constexpr float kRadiansPerDegree = kPi / 180;
+
+std::unique_ptr<Light> makeSpot(ObjectReader& j, const AssetResolver&) {
+    const Vec3 position = j.getVec3("position");
+    const Vec3 axis = j.getVec3("look_at") - position;
+    if (!(length(axis) > 0)) j.fail("look_at", "must differ from position");
+    const Rgb intensity = j.getRgb("intensity");
+    const float cone = j.getFloat("cone_angle", Range{0, 90, true, false});
+    const float falloffStart = j.getFloat("falloff_start", cone, Range::closed(0, 90));
+    if (falloffStart > cone)
+        j.fail("falloff_start", "must not exceed cone_angle (" + std::to_string(cone) + ")");
+    return std::make_unique<SpotLight>(position, normalize(axis), intensity,
+                                       cone * kRadiansPerDegree, falloffStart * kRadiansPerDegree);
+}
+
+// The rotation of an environment map: a proper rotation (orthonormal, determinant +1) and no
+// translation, as the map's frame; anything else is an error at "transform".
+Frame readRotation(ObjectReader& j) {
+    const Transform t = readTransform(j, "transform");
+    const Frame f{};
+    Frame r;
+    r.s = t.vector(f.s);
+    r.t = t.vector(f.t);
+    r.n = t.vector(f.n);
+    float scale = 0;
+    const bool rotation = t.isSimilarity(&scale) && std::abs(scale - 1) < 1e-4f &&
+                          dot(cross(r.s, r.t), r.n) > 0 && t.point(Vec3(0.0f)) == Vec3(0.0f);
+    if (!rotation) j.fail("transform", "an environment map takes rotations only");
+    r.s = normalize(r.s);
+    r.t = normalize(r.t);
+    r.n = normalize(r.n);
+    return r;
+}
+
+std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& assets) {
+    const std::string file = j.getString("file");
+    const std::string layoutName = j.getChoice("layout", {"latlong", "probe"});
+    const Rgb scale = j.getRgb("scale", Rgb(1.0f));
+    const Frame toWorld = readRotation(j);
+    const auto path = assets.resolve(file);
+    if (!path)
+        j.fail("file", "environment map \"" + file + "\" not found; searched " + assets.describe() +
+                           " (run `make assets`, or put the file under assets/ or set "
+                           "RENDERER_ASSETS)");
+    RgbImage image;
+    try {
+        image = readRgbImage(*path);
+    } catch (const std::exception& e) {
+        j.fail("file", e.what());
+    }
+    for (const Rgb& p : image.pixels)
+        if (!p.isFinite()) j.fail("file", path->string() + " holds non-finite values");
+    if (layoutName == "probe" && image.width != image.height)
+        j.fail("layout", "an angular probe must be square, " + path->string() + " is " +
+                             std::to_string(image.width) + "x" + std::to_string(image.height));
+    return std::make_unique<EnvironmentMap>(std::move(image), makeEnvLayout(layoutName), scale,
+                                            toWorld);
+}
+
+// {"radiance": L} is a constant environment, {"file": …} a map.
+std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& assets) {
+    if (j.has("file") == j.has("radiance"))
+        j.fail("radiance",
+               "an environment needs either \"radiance\" (constant) or \"file\" "
+               "(a map), not both or neither");
+    if (j.has("file")) return makeEnvironmentMap(j, assets);
+    return std::make_unique<ConstantEnvironment>(j.getRgb("radiance"));
+}
+
+}  // namespace
 
 std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets) {
     static const TypeTable<Light, const AssetResolver&> table{
@@ -11,10 +89,8 @@ std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets
          [](ObjectReader& j, const AssetResolver&) {
              return std::make_unique<PointLight>(j.getVec3("position"), j.getRgb("intensity"));
          }},
-        {"environment",
-         [](ObjectReader& j, const AssetResolver&) {
-             return std::make_unique<ConstantEnvironment>(j.getRgb("radiance"));
-         }},
+        {"spot", makeSpot},
+        {"environment", makeEnvironment},
     };
     return buildByType(json, "light", table, assets);
 }

@@ -4,6 +4,7 @@
 #include "loader/factories.h"
 #include "loader/type_table.h"
 #include "scene/shapes/disk.h"
+#include "scene/shapes/polygon.h"
 #include "scene/shapes/quad.h"
 #include "scene/shapes/sphere.h"
 #include "scene/shapes/triangle_mesh.h"
@@ -46,6 +47,18 @@ std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const Asset
     return std::make_unique<Disk>(t.point(center), normalize(t.normal(normal)), radius * scale);
 }
 
+std::unique_ptr<Shape> makePolygon(ObjectReader& j, const Transform& t, const AssetResolver&) {
+    std::vector<Vec3> vertices = j.getVec3Array("vertices", 3);
+    for (Vec3& v : vertices)
+        v = t.point(v);
+    if (const auto problem = checkConvexPolygon(vertices)) {
+        if (problem->vertex < 0) j.fail("vertices", problem->message);
+        throw ConfigError(j.pointerTo("vertices") + "/" + std::to_string(problem->vertex),
+                          "vertex " + std::to_string(problem->vertex) + " " + problem->message);
+    }
+    return std::make_unique<Polygon>(vertices);
+}
+
 std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const AssetResolver& assets) {
     const std::string file = j.getString("file");
     const std::string normals = j.getChoice("normals", {"geometric", "smooth"}, "geometric");
@@ -71,10 +84,8 @@ std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const Asset
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
                                  const AssetResolver& assets) {
     static const TypeTable<Shape, const Transform&, const AssetResolver&> table{
-        {"sphere", makeSphere},
-        {"quad", makeQuad},
-        {"disk", makeDisk},
-        {"mesh", makeMesh},
+        {"sphere", makeSphere},   {"quad", makeQuad}, {"disk", makeDisk},
+        {"polygon", makePolygon}, {"mesh", makeMesh},
     };
     return buildByType(json, "shape", table, transform, assets);
 }

@@ -111,18 +111,19 @@ std::vector<double> integrateCells(int rows, int cols, bool wrapColumns,
 DirectionHistogram::DirectionHistogram(int zCells, int phiCells, double zMin)
     : zCells_(zCells), phiCells_(phiCells), zMin_(zMin), counts_(size_t(zCells) * phiCells + 1) {}
 
-void DirectionHistogram::add(const Vec3& w) {
+size_t DirectionHistogram::cellOf(const Vec3& w) const {
     const double len = std::sqrt(double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);
     const double z = w.z / len;
-    if (z < zMin_ || !std::isfinite(z)) {
-        counts_.back() += 1;
-        return;
-    }
+    if (z < zMin_ || !std::isfinite(z)) return counts_.size() - 1;
     double phi = std::atan2(double(w.y), double(w.x));
     if (phi < 0) phi += 2 * M_PI;
     const int iz = std::min(int((z - zMin_) / (1.0 - zMin_) * zCells_), zCells_ - 1);
     const int ip = std::min(int(phi / (2 * M_PI) * phiCells_), phiCells_ - 1);
-    counts_[size_t(iz) * phiCells_ + ip] += 1;
+    return size_t(iz) * phiCells_ + ip;
+}
+
+void DirectionHistogram::add(const Vec3& w, double weight) {
+    counts_[cellOf(w)] += weight;
 }
 
 Vec3 DirectionHistogram::direction(double zCell, double phiCell) const {

@@ -21,7 +21,11 @@ namespace rr::test {
 class DirectionHistogram {
   public:
     DirectionHistogram(int zCells, int phiCells, double zMin = -1.0);
-    void add(const Vec3& w);
+    // Counts `w` with `weight` (1 for a sample; a quadrature point's mass when the histogram
+    // accumulates expected counts).
+    void add(const Vec3& w, double weight = 1.0);
+    // Index in counts() of the cell holding `w` (the last, extra cell when below zMin).
+    size_t cellOf(const Vec3& w) const;
     const std::vector<double>& counts() const { return counts_; }
     // Expected counts for `samples` draws from the density `pdf` (per steradian).
     std::vector<double> expected(const std::function<double(const Vec3&)>& pdf,

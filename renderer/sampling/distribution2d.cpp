@@ -1,0 +1,38 @@
+#include "sampling/distribution2d.h"
+
+#include <algorithm>
+
+namespace rr {
+
+Distribution2D::Distribution2D(std::span<const float> weights, int width, int height)
+    : width_(width), height_(height) {
+    std::vector<float> rowSums(size_t(height), 0.0f);
+    columns_.reserve(size_t(height));
+    for (int r = 0; r < height; ++r) {
+        const std::span<const float> row = weights.subspan(size_t(r) * width, size_t(width));
+        double sum = 0;
+        for (float w : row)
+            sum += w;
+        rowSums[size_t(r)] = static_cast<float>(sum);
+        columns_.emplace_back(row);
+    }
+    rows_ = Distribution1D(rowSums);
+}
+
+Vec2 Distribution2D::sample(Vec2 u, float* pdf) const {
+    float rowPmf, columnPmf, v, s;
+    const int row = rows_.sample(u.y, &rowPmf, &v);
+    const int col = columns_[size_t(row)].sample(u.x, &columnPmf, &s);
+    // The remapped u lies in [0, 1): the point stays inside its cell, so pdf() of the
+    // returned point finds the same cell (up to the rounding of the division below).
+    *pdf = rowPmf * columnPmf * float(width_) * float(height_);
+    return {(float(col) + s) / float(width_), (float(row) + v) / float(height_)};
+}
+
+float Distribution2D::pdf(Vec2 p) const {
+    const int col = std::clamp(static_cast<int>(p.x * float(width_)), 0, width_ - 1);
+    const int row = std::clamp(static_cast<int>(p.y * float(height_)), 0, height_ - 1);
+    return cellProbability(col, row) * float(width_) * float(height_);
+}
+
+}  // namespace rr

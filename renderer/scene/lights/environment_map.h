@@ -1,0 +1,59 @@
+// An environment map: radiance arriving from every direction, read from an image laid out by an
+// EnvLayout (latitude-longitude or angular probe) and rotated into the world.
+//
+// The map is piecewise constant: a direction sees the texel it falls in (nearest lookup, no
+// filtering). That is exactly what the sampling density assumes, so radiance/pdf stays bounded
+// within a texel, and texels masked out (the probe's outside, with its copyright notice) cannot
+// bleed into their neighbours as they would under bilinear filtering.
+//
+// Importance sampling: a texel is chosen with probability ∝ luminance × its solid angle (the
+// mean of dω/(ds dt) over it; Distribution2D), a point uniformly inside it, and the direction
+// there; the solid-angle density is p(s, t) / (dω/(ds dt)) (the change of variables from image
+// to sphere).
+#pragma once
+
+#include <memory>
+
+#include "io/rgb_image_io.h"
+#include "math/frame.h"
+#include "sampling/distribution2d.h"
+#include "scene/light.h"
+#include "scene/lights/env_layout.h"
+
+namespace rr {
+
+class EnvironmentMap final : public Light {
+  public:
+    // `image` must hold finite values (negative ones are clamped to 0: lossy EXR compression
+    // leaves some). Its radiance is multiplied by `scale`; `toWorld` is a rotation (its axes
+    // are the images of the map's X, Y, Z).
+    EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout, const Rgb& scale,
+                   const Frame& toWorld);
+
+    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
+    // Flux through the scene's bounding sphere: π r² ∫ L dω (its cross-section times the
+    // radiance integrated over directions, as for ConstantEnvironment).
+    Rgb power() const override { return radianceIntegral_ * (kPi * radius_ * radius_); }
+    bool isDelta() const override { return false; }
+    bool isInfinite() const override { return true; }
+    Rgb escapedRadiance(const Vec3& w) const override;
+    float directionPdf(const Vec3& w) const override;
+    void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
+
+    const EnvLayout& layout() const { return *layout_; }
+    // ∫ L dω over the sphere: Σ texel radiance × texel solid angle.
+    const Rgb& radianceIntegral() const { return radianceIntegral_; }
+
+  private:
+    int texelIndex(Vec2 st) const;
+
+    RgbImage image_;  // scaled and masked
+    std::unique_ptr<EnvLayout> layout_;
+    Frame toWorld_;
+    Distribution2D distribution_;
+    Rgb radianceIntegral_;
+    float radius_ = 1;
+};
+
+}  // namespace rr

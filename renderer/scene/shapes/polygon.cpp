@@ -1,0 +1,163 @@
+#include "scene/shapes/polygon.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sampling/warps.h"
+
+namespace rr {
+
+namespace {
+
+struct DVec3 {
+    double x = 0, y = 0, z = 0;
+};
+DVec3 operator-(const DVec3& a, const DVec3& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+double dot(const DVec3& a, const DVec3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+DVec3 cross(const DVec3& a, const DVec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double length(const DVec3& a) {
+    return std::sqrt(dot(a, a));
+}
+
+// The polygon's plane in double precision: the vertices relative to their mean, the unit
+// normal (Newell's area vector, right-hand rule on the vertex order), area and size.
+struct Plane {
+    std::vector<DVec3> p;  // vertex − mean
+    DVec3 mean, normal;
+    double area = 0, size = 0;
+};
+
+Plane fitPlane(std::span<const Vec3> vertices) {
+    Plane plane;
+    const double n = double(vertices.size());
+    for (const Vec3& v : vertices)
+        plane.mean = {plane.mean.x + v.x / n, plane.mean.y + v.y / n, plane.mean.z + v.z / n};
+    for (const Vec3& v : vertices) {
+        plane.p.push_back(DVec3{v.x, v.y, v.z} - plane.mean);
+        plane.size = std::max(plane.size, length(plane.p.back()));
+    }
+    DVec3 sum;
+    for (size_t i = 0; i < plane.p.size(); ++i) {
+        const DVec3 c = cross(plane.p[i], plane.p[(i + 1) % plane.p.size()]);
+        sum = {sum.x + c.x, sum.y + c.y, sum.z + c.z};
+    }
+    const double twiceArea = length(sum);
+    plane.area = twiceArea / 2;
+    if (twiceArea > 0) plane.normal = {sum.x / twiceArea, sum.y / twiceArea, sum.z / twiceArea};
+    return plane;
+}
+
+}  // namespace
+
+std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices) {
+    const int n = static_cast<int>(vertices.size());
+    if (n < 3) return PolygonProblem{-1, "a polygon needs at least 3 vertices"};
+    const Plane plane = fitPlane(vertices);
+    const double r = plane.size;
+    for (int i = 0; i < n; ++i)
+        if (length(plane.p[(i + 1) % n] - plane.p[i]) <= 1e-6 * r)
+            return PolygonProblem{(i + 1) % n, "repeats the previous vertex"};
+    if (!(plane.area > 1e-6 * r * r)) return PolygonProblem{-1, "the polygon has zero area"};
+    int worst = 0;
+    for (int i = 1; i < n; ++i)
+        if (std::abs(dot(plane.p[i], plane.normal)) > std::abs(dot(plane.p[worst], plane.normal)))
+            worst = i;
+    const double offPlane = std::abs(dot(plane.p[worst], plane.normal));
+    if (offPlane > 1e-4 * r)
+        return PolygonProblem{worst, "is the farthest off the polygon's plane, by " +
+                                         std::to_string(offPlane) +
+                                         " (more than 1e-4 of the polygon's size)"};
+    // Turning angle at each vertex, signed about the normal: all ≥ 0 for a convex polygon,
+    // and summing to 2π when the boundary winds around once (a pentagram turns by 4π).
+    double totalTurn = 0;
+    for (int i = 0; i < n; ++i) {
+        const DVec3 in = plane.p[i] - plane.p[(i + n - 1) % n];
+        const DVec3 out = plane.p[(i + 1) % n] - plane.p[i];
+        const double turn = std::atan2(dot(cross(in, out), plane.normal), dot(in, out));
+        if (turn < -1e-5) return PolygonProblem{i, "makes the polygon non-convex"};
+        if (turn > M_PI - 1e-5) return PolygonProblem{i, "folds the boundary back on itself"};
+        totalTurn += turn;
+    }
+    if (std::abs(totalTurn - 2 * M_PI) > 1e-3)
+        return PolygonProblem{-1, "the boundary winds around more than once (self-intersecting)"};
+    return std::nullopt;
+}
+
+Polygon::Polygon(std::span<const Vec3> vertices) {
+    const Plane plane = fitPlane(vertices);
+    normal_ = normalize(Vec3(float(plane.normal.x), float(plane.normal.y), float(plane.normal.z)));
+    for (const DVec3& p : plane.p) {
+        const double h = dot(p, plane.normal);  // projected onto the plane
+        vertices_.emplace_back(float(plane.mean.x + p.x - h * plane.normal.x),
+                               float(plane.mean.y + p.y - h * plane.normal.y),
+                               float(plane.mean.z + p.z - h * plane.normal.z));
+    }
+    const Vec3& v0 = vertices_[0];
+    std::vector<float> areas;
+    for (size_t k = 1; k + 1 < vertices_.size(); ++k) {
+        areas.push_back(0.5f * length(cross(vertices_[k] - v0, vertices_[k + 1] - v0)));
+        area_ += areas.back();
+    }
+    fanByArea_ = Distribution1D(areas);
+
+    const Vec3 u = normalize(vertices_[1] - v0), v = cross(normal_, u);
+    float uMin = 0, uMax = 0, vMin = 0, vMax = 0;
+    for (const Vec3& p : vertices_) {
+        uMin = std::min(uMin, dot(p - v0, u));
+        uMax = std::max(uMax, dot(p - v0, u));
+        vMin = std::min(vMin, dot(p - v0, v));
+        vMax = std::max(vMax, dot(p - v0, v));
+        errorScale_ = std::max(errorScale_, maxAbsComponent(p));
+    }
+    uvOrigin_ = v0 + u * uMin + v * vMin;
+    uAxis_ = u / (uMax - uMin);
+    vAxis_ = v / (vMax - vMin);
+}
+
+RTCGeometry Polygon::createGeometry(RTCDevice device) const {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    setVertexBuffers(g, vertices_.data(), vertices_.size());
+    const size_t triangles = vertices_.size() - 2;
+    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+    for (unsigned k = 0; k < triangles; ++k) {
+        index[3 * k + 0] = 0;
+        index[3 * k + 1] = k + 1;
+        index[3 * k + 2] = k + 2;
+    }
+    rtcCommitGeometry(g);
+    return g;
+}
+
+void Polygon::completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const {
+    // Interpolated from the fan triangle's vertices with Embree's barycentrics, so the error is
+    // relative to the polygon's coordinates, not to the ray origin's distance.
+    const Vec3 offset = offsetAt(ray.time);
+    const Vec3 &p0 = vertices_[0], &p1 = vertices_[hit.primID + 1], &p2 = vertices_[hit.primID + 2];
+    const Vec3 p = p0 * (1 - hit.u - hit.v) + p1 * hit.u + p2 * hit.v;
+    out->position = p + offset;
+    out->errorScale = errorScale_ + motionScale();
+    out->geometricNormal = normal_;
+    out->shadingNormal = normal_;
+    out->uv =
+        Vec2(clamp(dot(p - uvOrigin_, uAxis_), 0, 1), clamp(dot(p - uvOrigin_, vAxis_), 0, 1));
+}
+
+ShapeSample Polygon::sampleArea(Vec2 u) const {
+    float uRemapped;
+    const int k = fanByArea_.sample(u.x, nullptr, &uRemapped) + 1;
+    const Vec2 b = squareToUniformTriangle(Vec2(uRemapped, u.y));
+    ShapeSample s;
+    s.position = vertices_[0] * b.x + vertices_[k] * b.y + vertices_[k + 1] * (1 - b.x - b.y);
+    s.normal = normal_;
+    s.errorScale = errorScale_;
+    return s;
+}
+
+}  // namespace rr
