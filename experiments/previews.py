@@ -32,6 +32,11 @@ COLUMNS = 5
 TILE_INCHES = 2.0
 
 
+def natural_key(path):
+    """fig4 before fig10."""
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.stem)]
+
+
 def scene_summary(scene):
     """`renderer check`: (integrator, width, height), or raises with the renderer's message."""
     proc = subprocess.run([str(paths.renderer_binary()), "check", str(scene)],
@@ -96,9 +101,10 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("scenes", nargs="*", type=Path)
     parser.add_argument("--size", type=int, default=128, help="longer side in pixels")
-    parser.add_argument("--spp", type=int, default=64, help="samples per pixel")
+    parser.add_argument("--spp", type=int, default=256, help="samples per pixel")
     args = parser.parse_args()
-    scenes = args.scenes or sorted((paths.ROOT / "configs" / "scenes").glob("*.json"))
+    scenes = args.scenes or sorted((paths.ROOT / "configs" / "scenes").glob("*.json"),
+                                   key=natural_key)
     OUT.mkdir(parents=True, exist_ok=True)
 
     tiles, failures, start = [], [], time.monotonic()
