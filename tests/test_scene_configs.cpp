@@ -1,7 +1,8 @@
 // Every scene file in configs/scenes/ loads and renders in-process with path_mis: a 16×16
 // image at 1 spp is finite and non-negative in every pixel, and a 32×32 image at 4 spp is not
 // black (a black scene is a broken scene: a light that points away, a camera inside a wall).
-// The files are listed at run time, so a new scene is tested without editing this file.
+// Paper scenes must also be named by the convention and carry a description. The files are
+// listed at run time, so a new scene is tested without editing this file.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -102,6 +104,23 @@ TEST_P(SceneConfig, IsNotBlack) {
     EXPECT_GT(brightest, 0) << "every pixel is black";
 }
 
+// Paper scenes follow configs/README.md's naming, <paper>_<figure>_<what>.json, and document
+// in `description` how they recreate the figure (the papers give no scene files).
+class SceneFile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SceneFile, PaperScenesAreNamedAndDescribed) {
+    static const std::regex paperPrefix("(tais|pmc|ris|twostage)_.*");
+    static const std::regex paperName("(tais|pmc|ris|twostage)_(fig|tab)[0-9]+_[a-z0-9_]+\\.json");
+    const std::string& name = GetParam();
+    if (!std::regex_match(name, paperPrefix)) return;  // not a paper scene
+    EXPECT_TRUE(std::regex_match(name, paperName))
+        << name << " is not <paper>_<fig|tab><number>_<what>.json";
+    const Json document = readSceneFile(fs::path(TEST_SCENES_DIR) / name);
+    const auto description = document.find("description");
+    ASSERT_NE(description, document.end()) << name << " has no description";
+    EXPECT_FALSE(description->get<std::string>().empty()) << name << " has an empty description";
+}
+
 // Test names from file names: gtest allows only letters, digits and '_'.
 std::string testName(const ::testing::TestParamInfo<std::string>& info) {
     std::string name = fs::path(info.param).stem().string();
@@ -111,6 +130,7 @@ std::string testName(const ::testing::TestParamInfo<std::string>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneConfig, ::testing::ValuesIn(sceneFileNames()), testName);
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneFile, ::testing::ValuesIn(sceneFileNames()), testName);
 
 }  // namespace
 }  // namespace rr::test
