@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "io/rgb_image_io.h"
+#include "loader/asset_files.h"
 #include "loader/factories.h"
 #include "loader/type_table.h"
 #include "scene/lights/constant_environment.h"
@@ -47,25 +48,12 @@ Frame readRotation(ObjectReader& j) {
 }
 
 std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& assets) {
-    const std::string file = j.getString("file");
     const std::string layoutName = j.getChoice("layout", {"latlong", "probe"});
     const Rgb scale = j.getRgb("scale", Rgb(1.0f));
     const Frame toWorld = readRotation(j);
-    const auto path = assets.resolve(file);
-    if (!path)
-        j.fail("file", "environment map \"" + file + "\" not found; searched " + assets.describe() +
-                           " (run `make assets`, or put the file under assets/ or set "
-                           "RENDERER_ASSETS)");
-    RgbImage image;
-    try {
-        image = readRgbImage(*path);
-    } catch (const std::exception& e) {
-        j.fail("file", e.what());
-    }
-    for (const Rgb& p : image.pixels)
-        if (!p.isFinite()) j.fail("file", path->string() + " holds non-finite values");
+    RgbImage image = readImageAsset(j, "file", assets, "environment map");
     if (layoutName == "probe" && image.width != image.height)
-        j.fail("layout", "an angular probe must be square, " + path->string() + " is " +
+        j.fail("layout", "an angular probe must be square, " + j.getString("file") + " is " +
                              std::to_string(image.width) + "x" + std::to_string(image.height));
     return std::make_unique<EnvironmentMap>(std::move(image), makeEnvLayout(layoutName), scale,
                                             toWorld);

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "io/mesh_io.h"
+#include "loader/asset_files.h"
 #include "loader/factories.h"
 #include "loader/type_table.h"
 #include "scene/shapes/disk.h"
@@ -60,16 +61,11 @@ std::unique_ptr<Shape> makePolygon(ObjectReader& j, const Transform& t, const As
 }
 
 std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const AssetResolver& assets) {
-    const std::string file = j.getString("file");
+    const std::filesystem::path path = readAssetPath(j, "file", assets, "mesh");
     const std::string normals = j.getChoice("normals", {"geometric", "smooth"}, "geometric");
-    const auto path = assets.resolve(file);
-    if (!path)
-        j.fail("file", "mesh \"" + file + "\" not found; searched " + assets.describe() +
-                           " (run `make assets`, or put the file under assets/ or set "
-                           "RENDERER_ASSETS)");
     MeshData data;
     try {
-        data = loadMesh(*path);
+        data = loadMesh(path);
     } catch (const std::exception& e) {
         j.fail("file", e.what());
     }

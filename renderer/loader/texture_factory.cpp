@@ -3,7 +3,7 @@
 #include <cmath>
 #include <optional>
 
-#include "io/rgb_image_io.h"
+#include "loader/asset_files.h"
 #include "loader/type_table.h"
 #include "scene/textures/checker.h"
 #include "scene/textures/gradient.h"
@@ -73,30 +73,20 @@ std::unique_ptr<Texture<T>> makeGradient(ObjectReader& j, Range range, const Ass
 
 template <class T>
 std::unique_ptr<Texture<T>> makeImage(ObjectReader& j, Range range, const AssetResolver& assets) {
-    const std::string file = j.getString("file");
+    const RgbImage image = readImageAsset(j, "file", assets, "image");
     const float scale = j.getFloat("scale", 1.0f);
-    const auto path = assets.resolve(file);
-    if (!path)
-        j.fail("file", "image \"" + file + "\" not found; searched " + assets.describe() +
-                           " (put the file under assets/ or set RENDERER_ASSETS)");
-    RgbImage image;
-    try {
-        image = readRgbImage(*path);
-    } catch (const std::exception& e) {
-        j.fail("file", e.what());
-    }
-    if (image.width < 1 || image.height < 1) j.fail("file", "image \"" + file + "\" is empty");
+    if (image.width < 1 || image.height < 1) j.fail("file", "the image is empty");
     std::vector<T> texels;
     texels.reserve(image.pixels.size());
     for (const Rgb& pixel : image.pixels) {
         const T value = ValueTraits<T>::fromTexel(pixel * scale);
         if (!ValueTraits<T>::inRange(value, range)) {
             const size_t i = texels.size();
-            throw ConfigError(j.pointer(), "texel (" + std::to_string(i % image.width) + ", " +
-                                               std::to_string(i / image.width) + ") of \"" + file +
-                                               "\" × scale = " + ValueTraits<T>::describe(value) +
-                                               " is outside the parameter's range (" +
-                                               range.describe() + ")");
+            throw ConfigError(
+                j.pointer(), "texel (" + std::to_string(i % image.width) + ", " +
+                                 std::to_string(i / image.width) + ") of \"" + j.getString("file") +
+                                 "\" × scale = " + ValueTraits<T>::describe(value) +
+                                 " is outside the parameter's range (" + range.describe() + ")");
         }
         texels.push_back(value);
     }

@@ -1,0 +1,30 @@
+#include "loader/asset_files.h"
+
+namespace rr {
+
+std::filesystem::path readAssetPath(ObjectReader& json, const std::string& key,
+                                    const AssetResolver& assets, const std::string& what) {
+    const std::string file = json.getString(key);
+    const auto path = assets.resolve(file);
+    if (!path)
+        json.fail(key, what + " \"" + file + "\" not found; searched " + assets.describe() +
+                           " (run `make assets`, or put the file under assets/ or set "
+                           "RENDERER_ASSETS)");
+    return *path;
+}
+
+RgbImage readImageAsset(ObjectReader& json, const std::string& key, const AssetResolver& assets,
+                        const std::string& what) {
+    const std::filesystem::path path = readAssetPath(json, key, assets, what);
+    RgbImage image;
+    try {
+        image = readRgbImage(path);
+    } catch (const std::exception& e) {
+        json.fail(key, e.what());
+    }
+    for (const Rgb& p : image.pixels)
+        if (!p.isFinite()) json.fail(key, path.string() + " holds non-finite values");
+    return image;
+}
+
+}  // namespace rr
