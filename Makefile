@@ -21,7 +21,7 @@ PACKAGES := g++ make cmake git pkg-config ca-certificates \
             libboost-dev libgtest-dev libgmock-dev libstb-dev
 
 .PHONY: deps configure build run render test asan bench assets references experiments tables \
-        plots reproduce format clean
+        plots reproduce previews format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -68,6 +68,11 @@ plots: deps
 # References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
 reproduce: build
 	$(HARNESS) reproduce
+
+# Small renders of every scene (results/previews/<scene>.png, git-ignored) and a labelled
+# contact sheet, results/previews/contact_sheet.png (committed). A few minutes on 2 cores.
+previews: build
+	BUILD=$(BUILD) $(PYTHON) experiments/previews.py
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)

@@ -1,0 +1,131 @@
+#!/usr/bin/python3
+"""Small renders of every scene and a labelled contact sheet (`make previews`).
+
+  previews.py [SCENE.json ...] [--size PIXELS] [--spp N]
+
+Renders each scene (default: every configs/scenes/*.json) with its own integrator at a preview
+size (the longer side --size pixels, the scene's aspect ratio kept) and --spp samples per
+pixel, into results/previews/<scene>.png (the renderer's sRGB preview at exposure 0; the EXR
+beside it), then lays them out in results/previews/contact_sheet.png. A scene whose asset is
+absent gets a labelled blank tile; a scene that fails to load or render is reported and makes
+the exit status 1 once the sheet is written."""
+import argparse
+import math
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from harness import paths  # noqa: E402
+
+OUT = paths.RESULTS / "previews"
+COLUMNS = 5
+TILE_INCHES = 2.0
+
+
+def natural_key(path):
+    """fig4 before fig10."""
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.stem)]
+
+
+def scene_summary(scene):
+    """`renderer check`: (integrator, width, height), or raises with the renderer's message."""
+    proc = subprocess.run([str(paths.renderer_binary()), "check", str(scene)],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(proc.stderr.strip().splitlines()[-1])
+    m = re.search(r"valid \((\w+), (\d+)x(\d+),", proc.stdout)
+    return m.group(1), int(m.group(2)), int(m.group(3))
+
+
+def preview_resolution(width, height, size):
+    scale = size / max(width, height)
+    return max(1, round(width * scale)), max(1, round(height * scale))
+
+
+def render(scene, resolution, spp):
+    """Renders the scene; returns the PNG preview's path."""
+    exr = OUT / f"{scene.stem}.exr"
+    subprocess.run([str(paths.renderer_binary()), "render", str(scene), "--out", str(exr),
+                    "--resolution", f"{resolution[0]}x{resolution[1]}", "--spp", str(spp)],
+                   check=True, capture_output=True, text=True)
+    return exr.with_suffix(".png")
+
+
+def preview(scene, size, spp):
+    """One scene: (tile image or None, label, failure message or None)."""
+    try:
+        integrator, width, height = scene_summary(scene)
+    except RuntimeError as e:
+        if " not found; searched " in str(e):
+            return None, f"{scene.stem}\n(asset absent)", None
+        return None, f"{scene.stem}\n(does not load)", str(e)
+    resolution = preview_resolution(width, height, size)
+    try:
+        png = render(scene, resolution, spp)
+    except subprocess.CalledProcessError as e:
+        message = (e.stderr or "").strip().splitlines()
+        return None, f"{scene.stem}\n(render failed)", message[-1] if message else str(e)
+    return mpimg.imread(png), f"{scene.stem}\n{integrator}", None
+
+
+def contact_sheet(tiles, spp, size, out):
+    rows = math.ceil(len(tiles) / COLUMNS)
+    fig, axes = plt.subplots(rows, COLUMNS, figsize=(COLUMNS * TILE_INCHES,
+                                                     rows * (TILE_INCHES + 0.35)),
+                             squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, (image, label) in zip(axes.flat, tiles):
+        if image is not None:
+            ax.imshow(image, interpolation="nearest")
+        ax.set_title(label, fontsize=6.5, pad=3)
+    fig.suptitle(f"Scenes in configs/scenes/: previews, longer side {size} px, {spp} spp "
+                 f"(make previews)", fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.98))
+    fig.savefig(out, dpi=110, facecolor="white")
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("scenes", nargs="*", type=Path)
+    parser.add_argument("--size", type=int, default=128, help="longer side in pixels")
+    parser.add_argument("--spp", type=int, default=256, help="samples per pixel")
+    args = parser.parse_args()
+    scenes = args.scenes or sorted((paths.ROOT / "configs" / "scenes").glob("*.json"),
+                                   key=natural_key)
+    OUT.mkdir(parents=True, exist_ok=True)
+
+    tiles, failures, start = [], [], time.monotonic()
+    for i, scene in enumerate(scenes, 1):
+        t0 = time.monotonic()
+        image, label, failure = preview(scene, args.size, args.spp)
+        tiles.append((image, label))
+        status = failure or ("skipped: an asset is absent" if image is None else "done")
+        print(f"[{i}/{len(scenes)}] {scene.stem}: {status} ({time.monotonic() - t0:.1f} s)",
+              flush=True)
+        if failure:
+            failures.append(scene.stem)
+    sheet = OUT / "contact_sheet.png"
+    contact_sheet(tiles, args.spp, args.size, sheet)
+    print(f"wrote {paths.relative(sheet)} ({len(scenes)} scenes, "
+          f"{time.monotonic() - start:.0f} s)")
+    if failures:
+        print(f"failed: {', '.join(failures)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
