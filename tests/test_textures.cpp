@@ -12,6 +12,7 @@
 #include "io/exr_io.h"
 #include "io/rgb_image_io.h"
 #include "loader/texture_factory.h"
+#include "support/scene_testing.h"
 #include "support/scratch.h"
 
 namespace rr::test {
@@ -302,6 +303,25 @@ TEST(TextureRanges, MalformedTextureObjects) {
     EXPECT_EQ(errorOf({{"type", "gradient"}, {"from", 0}, {"to", 1}, {"axis", "w"}}), "/m/p/axis");
     EXPECT_EQ(errorOf({{"type", "gradient"}, {"from", 0}, {"to", 1}, {"colour", 1}}),
               "/m/p/colour");  // unknown keys are errors
+}
+
+// A sphere's uv poles lie on its own z axis, which its transform's rotation turns: rotated by
+// −90° about x, the pole faces +y, so a ray down onto the top hits v = 0, and on the equator the
+// tangent (the u axis of anisotropic materials) runs along the parallel, perpendicular to y.
+TEST(SphereCoordinates, FollowTheSphereRotation) {
+    const LoadedScene scene = loadSceneText(R"({
+        "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "shapes": [{"type": "sphere", "radius": 1, "material": {"type": "lambert"},
+                    "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90},
+                                  "translate": [0, 0, 0]}}],
+        "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 1}]})");
+    SurfaceHit top;
+    ASSERT_TRUE(scene.scene->intersect(Ray{Vec3(0.001f, 5, 0), Vec3(0, -1, 0), 100, 0}, &top));
+    EXPECT_NEAR(top.uv.y, 0.0f, 1e-3f);
+    SurfaceHit side;
+    ASSERT_TRUE(scene.scene->intersect(Ray{Vec3(0, 0, 5), Vec3(0, 0, -1), 100, 0}, &side));
+    EXPECT_NEAR(side.uv.y, 0.5f, 1e-3f);
+    EXPECT_NEAR(std::abs(dot(normalize(side.tangent), Vec3(1, 0, 0))), 1.0f, 1e-4f);
 }
 
 }  // namespace

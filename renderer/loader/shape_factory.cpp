@@ -26,7 +26,12 @@ std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const Ass
     const Vec3 center = j.getVec3("center", Vec3(0.0f));
     const float radius = j.getFloat("radius", Range::positive());
     const float scale = similarityScale(j, t, "sphere");
-    return std::make_unique<Sphere>(t.point(center), radius * scale);
+    // The transform's rotation turns the sphere's own axes (the poles of its uv).
+    Frame orientation;
+    orientation.s = normalize(t.vector(Vec3(1, 0, 0)));
+    orientation.t = normalize(t.vector(Vec3(0, 1, 0)));
+    orientation.n = normalize(t.vector(Vec3(0, 0, 1)));
+    return std::make_unique<Sphere>(t.point(center), radius * scale, orientation);
 }
 
 std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const AssetResolver&) {

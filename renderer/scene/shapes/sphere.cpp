@@ -108,9 +108,11 @@ void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
     out->errorScale = errorScale_ + motionScale();
     out->geometricNormal = n;
     out->shadingNormal = n;
-    const float phi = std::atan2(n.y, n.x);
-    out->uv = Vec2((phi < 0 ? phi + kTwoPi : phi) / kTwoPi, safeAcos(n.z) * kInvPi);
-    out->tangent = Vec3(-n.y, n.x, 0);  // ∂p/∂φ: along the parallels (zero at the poles)
+    const Vec3 local = orientation_.toLocal(n);
+    const float phi = std::atan2(local.y, local.x);
+    out->uv = Vec2((phi < 0 ? phi + kTwoPi : phi) / kTwoPi, safeAcos(local.z) * kInvPi);
+    // ∂p/∂φ: along the parallels (zero at the poles).
+    out->tangent = orientation_.toWorld(Vec3(-local.y, local.x, 0));
 }
 
 ShapeSample Sphere::sampleArea(Vec2 u) const {

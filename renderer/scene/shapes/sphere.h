@@ -1,16 +1,24 @@
 // Analytic sphere: Embree user geometry with a double-precision quadratic so glass balls get
 // exact hit points and normals (n = (p − c) / r). Lights on spheres are sampled by the cone of
 // directions they subtend (uniform solid angle) when the reference point is outside.
+// Texture coordinates are spherical angles about the sphere's own z axis (its poles), which a
+// rotation in the shape's transform turns: u = φ/2π, v = θ/π, and the tangent runs along the
+// parallels (the u axis of anisotropic materials).
 #pragma once
 
+#include "math/frame.h"
 #include "scene/shape.h"
 
 namespace rr {
 
 class Sphere final : public Shape {
   public:
-    Sphere(const Vec3& center, float radius)
-        : center_(center), radius_(radius), errorScale_(maxAbsComponent(center) + radius) {}
+    // `orientation`: the sphere's own axes in world space (z = the poles of its uv).
+    Sphere(const Vec3& center, float radius, const Frame& orientation = Frame())
+        : center_(center),
+          radius_(radius),
+          errorScale_(maxAbsComponent(center) + radius),
+          orientation_(orientation) {}
 
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
@@ -32,6 +40,7 @@ class Sphere final : public Shape {
     Vec3 center_;
     float radius_;
     float errorScale_;  // of centre + radius · normal
+    Frame orientation_;
 };
 
 }  // namespace rr
