@@ -35,20 +35,9 @@ constexpr int kSamples = 1000000;
 
 const ShadingContext kCtx{};
 
-Vec3 fromAngles(double thetaDegrees, double phiDegrees) {
-    const double t = thetaDegrees * M_PI / 180, p = phiDegrees * M_PI / 180;
-    return Vec3(float(std::sin(t) * std::cos(p)), float(std::sin(t) * std::sin(p)),
-                float(std::cos(t)));
-}
-
-std::string str(const Vec3& w) {
-    char buffer[96];
-    std::snprintf(buffer, sizeof buffer, "(%.6f, %.6f, %.6f)", w.x, w.y, w.z);
-    return buffer;
-}
-
 // Outgoing directions: normal, oblique, grazing, and below the surface (two-sided Lambert).
-const Vec3 kWos[] = {Vec3(0, 0, 1), fromAngles(50, 30), fromAngles(89, 200), fromAngles(120, -60)};
+const Vec3 kWos[] = {Vec3(0, 0, 1), directionFromDegrees(50, 30), directionFromDegrees(89, 200),
+                     directionFromDegrees(120, -60)};
 
 // --- Lambert ----------------------------------------------------------------------------------
 
@@ -94,21 +83,21 @@ TEST_P(LambertChi2, SampledDirectionsFollowPdf) {
     EXPECT_LE(run.declined, 10) << "declined samples: expected ~0.1 per 10^6";
     if (run.declined > 0)
         std::printf("[info] %d of %d samples declined on the horizon\n", run.declined, kSamples);
-    kChi2.expectFits(run.outcome, "Lambert, wo = " + str(wo));
+    kChi2.expectFits(run.outcome, "Lambert, wo = " + describe(wo));
 }
 
 INSTANTIATE_TEST_SUITE_P(OutgoingDirections, LambertChi2, ::testing::ValuesIn(kWos));
 
 TEST(LambertChi2NegativeControl, SamplesBelowRejectThePdfAbove) {
     const Lambert m(Rgb(0.5f));
-    const Vec3 wo = fromAngles(120, -60);
+    const Vec3 wo = directionFromDegrees(120, -60);
     const LambertRun run = lambertChi2(
         wo, 200, [&](const Vec3& wi) { return m.pdf(kCtx, Vec3(wo.x, wo.y, -wo.z), wi); });
     kChi2.expectRejects(run.outcome, "Lambert below vs pdf above");
 }
 
 TEST(LambertChi2NegativeControl, SamplesRejectUniformHemispherePdf) {
-    const Vec3 wo = fromAngles(50, 30);
+    const Vec3 wo = directionFromDegrees(50, 30);
     const LambertRun run =
         lambertChi2(wo, 201, [](const Vec3& wi) { return wi.z > 0 ? 0.5 / M_PI : 0.0; });
     kChi2.expectRejects(run.outcome, "Lambert vs uniform hemisphere");
@@ -118,13 +107,13 @@ TEST(LambertChi2NegativeControl, SamplesRejectUniformHemispherePdf) {
 // whole sphere and zoomed onto a 25° cap around a tilted axis (the rest is one cell).
 TEST(LambertSharedChecks, SamplingFitsOnSphereAndOnZoomedCap) {
     const Lambert m(Rgb(0.5f, 0.6f, 0.7f));
-    const Vec3 wo = fromAngles(50, 30);
+    const Vec3 wo = directionFromDegrees(50, 30);
     const BsdfSamplingRun sphere = sampleBsdf(m, kCtx, wo, 300);
     EXPECT_EQ(sphere.weightMismatches, 0) << sphere.firstMismatch;
     EXPECT_EQ(sphere.nonFinite, 0);
     kChi2.expectFits(sphere.outcome, "Lambert, shared checks, whole sphere");
     BsdfHistogramLayout cap;
-    cap.axis = fromAngles(40, 100);
+    cap.axis = directionFromDegrees(40, 100);
     cap.capDegrees = 25;
     cap.zCells = 20;
     cap.phiCells = 24;
@@ -147,7 +136,7 @@ TEST(Lambert, SampleWeightIsEvalOverPdf) {
                     << "declined above the horizon";
                 continue;
             }
-            EXPECT_GT(s.wi.z * wo.z, 0.0f) << "wi on the other side, wo = " << str(wo);
+            EXPECT_GT(s.wi.z * wo.z, 0.0f) << "wi on the other side, wo = " << describe(wo);
             EXPECT_NEAR(length(s.wi), 1.0f, 1e-5f);
             EXPECT_FALSE(s.isSpecular());
             EXPECT_EQ(s.lobe, kReflection | kDiffuse);
@@ -156,7 +145,7 @@ TEST(Lambert, SampleWeightIsEvalOverPdf) {
             const Rgb f = m.eval(kCtx, wo, s.wi);
             for (int c = 0; c < 3; ++c) {
                 const float expected = f[c] / pdf;
-                EXPECT_NEAR(s.weight[c], expected, 1e-4f * expected) << "wo = " << str(wo);
+                EXPECT_NEAR(s.weight[c], expected, 1e-4f * expected) << "wo = " << describe(wo);
             }
         }
 }
@@ -169,7 +158,7 @@ TEST(Lambert, EvalAndPdfVanishOnTheOtherSide) {
         const Vec3 wi = normalize(
             Vec3(uniform(4, i, 3) * 2 - 1, uniform(4, i, 4) * 2 - 1, uniform(4, i, 5) * 2 - 1));
         if (wo.z * wi.z < 0) {
-            EXPECT_TRUE(m.eval(kCtx, wo, wi).isBlack()) << str(wo) << " " << str(wi);
+            EXPECT_TRUE(m.eval(kCtx, wo, wi).isBlack()) << describe(wo) << " " << describe(wi);
             EXPECT_EQ(m.pdf(kCtx, wo, wi), 0.0f);
         } else if (wo.z * wi.z > 0) {
             EXPECT_NEAR(m.eval(kCtx, wo, wi).r, 0.8f / kPi * std::abs(wi.z), 1e-6f);
@@ -213,10 +202,10 @@ TEST(Lambert, EvalIntegratesToAlbedo) {
                 p += m.pdf(kCtx, wo, wi);
             }
         const double dA = (2.0 / nz) * (2 * M_PI / nphi);
-        EXPECT_NEAR(e[0] * dA, 0.3, 1e-4) << str(wo);
-        EXPECT_NEAR(e[1] * dA, 0.6, 1e-4) << str(wo);
-        EXPECT_NEAR(e[2] * dA, 0.9, 1e-4) << str(wo);
-        EXPECT_NEAR(p * dA, 1.0, 1e-4) << str(wo);
+        EXPECT_NEAR(e[0] * dA, 0.3, 1e-4) << describe(wo);
+        EXPECT_NEAR(e[1] * dA, 0.6, 1e-4) << describe(wo);
+        EXPECT_NEAR(e[2] * dA, 0.9, 1e-4) << describe(wo);
+        EXPECT_NEAR(p * dA, 1.0, 1e-4) << describe(wo);
     }
 }
 
@@ -226,7 +215,7 @@ TEST(Lambert, PeakIsTheNormalOnTheSideOfWo) {
         LobePeaks peaks;
         m.peaks(kCtx, wo, &peaks);
         ASSERT_EQ(peaks.count, 1);
-        EXPECT_EQ(peaks.directions[0], Vec3(0, 0, wo.z > 0 ? 1.0f : -1.0f)) << str(wo);
+        EXPECT_EQ(peaks.directions[0], Vec3(0, 0, wo.z > 0 ? 1.0f : -1.0f)) << describe(wo);
     }
     EXPECT_EQ(m.lobes(), kReflection | kDiffuse);
     EXPECT_TRUE(m.hasNonSpecular());
@@ -241,7 +230,7 @@ TEST(Mirror, ReflectsAboutTheNormalWithReflectanceWeight) {
     for (const Vec3& wo : kWos) {
         BsdfSample s;
         ASSERT_TRUE(m.sample(kCtx, wo, 0.3f, Vec2(0.1f, 0.9f), &s));
-        EXPECT_EQ(s.wi, Vec3(-wo.x, -wo.y, wo.z)) << str(wo);
+        EXPECT_EQ(s.wi, Vec3(-wo.x, -wo.y, wo.z)) << describe(wo);
         EXPECT_NEAR(length(reflect(wo, Vec3(0, 0, wo.z > 0 ? 1.0f : -1.0f)) - s.wi), 0.0f, 1e-6f);
         EXPECT_EQ(s.weight, r);
         EXPECT_EQ(s.pdf, 1.0f);
@@ -327,7 +316,7 @@ struct Incidence {
     double thetaDegrees;
     bool inside;
     Vec3 wo() const {
-        const Vec3 w = fromAngles(thetaDegrees, 35);
+        const Vec3 w = directionFromDegrees(thetaDegrees, 35);
         return inside ? Vec3(w.x, w.y, -w.z) : w;
     }
 };
@@ -393,7 +382,7 @@ TEST(Dielectric, WeightsAndProbabilitiesOfBothLobes) {
 TEST(Dielectric, TotalInternalReflectionAlwaysReflects) {
     const Dielectric m(1.5f, Rgb(0.9f), Rgb(0.5f));
     for (double theta : {42.0, 60.0, 89.0}) {
-        const Vec3 w = fromAngles(theta, 10);
+        const Vec3 w = directionFromDegrees(theta, 10);
         const Vec3 wo(w.x, w.y, -w.z);
         for (int k = 0; k < 1000; ++k) {
             BsdfSample s;
@@ -445,7 +434,7 @@ TEST(Dielectric, ReflectedFractionIsFresnel) {
 TEST(DielectricNegativeControl, ReflectedFractionIsNotSchlick) {
     const float eta = 1.5f;
     const Dielectric m(eta, Rgb(1.0f), Rgb(1.0f));
-    const Vec3 wo = fromAngles(70, 0);
+    const Vec3 wo = directionFromDegrees(70, 0);
     const double r0 = std::pow((eta - 1) / (eta + 1), 2);
     const double schlick = r0 + (1 - r0) * std::pow(1 - wo.z, 5);
     int reflected = 0;
