@@ -1,0 +1,151 @@
+#include "techniques/tais/importance_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rr::tais {
+
+namespace {
+
+// The largest float below 1: warped coordinates stay in [0, 1) like the uniform ones.
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+int cellOf(float x, int cells) {
+    return std::clamp(static_cast<int>(x * cells), 0, cells - 1);
+}
+
+// The point at `fraction` of `cell`, in float, nudged so that it lies in that cell as pdf()
+// and cdf() locate it: rounding (cell + fraction)/cells can land on the next cell's edge,
+// where the density differs.
+float positionInCell(int cell, double fraction, int cells) {
+    float x = std::min(static_cast<float>((cell + fraction) / cells), kOneMinusEpsilon);
+    while (cellOf(x, cells) > cell)
+        x = std::nextafter(x, 0.0f);
+    while (cellOf(x, cells) < cell)
+        x = std::nextafter(x, 1.0f);
+    return x;
+}
+
+}  // namespace
+
+InvertedMap1D::InvertedMap1D(int cells) : sums_(static_cast<size_t>(cells) + 1) {
+    if (cells < 1) throw std::invalid_argument("an importance map needs at least one cell");
+    for (int i = 0; i <= cells; ++i)
+        sums_[i] = i;
+}
+
+InvertedMap1D InvertedMap1D::fromWeights(std::span<const double> weights) {
+    InvertedMap1D map(static_cast<int>(weights.size()));
+    for (size_t i = 0; i < weights.size(); ++i) {
+        if (!(weights[i] >= 0) || !std::isfinite(weights[i]))
+            throw std::invalid_argument("importance map weights must be finite and >= 0");
+        map.sums_[i + 1] = map.sums_[i] + weights[i];
+    }
+    if (!(map.total() > 0)) throw std::invalid_argument("importance map weights are all zero");
+    return map;
+}
+
+void InvertedMap1D::accumulate(const InvertedMap1D& other, double scale) {
+    if (other.sums_.size() != sums_.size())
+        throw std::invalid_argument("importance maps of different sizes");
+    for (size_t i = 0; i < sums_.size(); ++i)
+        sums_[i] += scale * other.sums_[i];
+}
+
+void InvertedMap1D::scale(double factor) {
+    for (double& s : sums_)
+        s *= factor;
+}
+
+InvertedMap1D::Inversion InvertedMap1D::invert(float u) const {
+    const double target = double(u) * total();
+    // The first running sum above the target ends the cell: zero-weight cells are skipped.
+    const auto above = std::upper_bound(sums_.begin(), sums_.end(), target);
+    const int cell = std::clamp(int(above - sums_.begin()) - 1, 0, cells() - 1);
+    const double w = weight(cell);
+    return {cell, w > 0 ? std::clamp((target - sums_[cell]) / w, 0.0, 1.0) : 0.0};
+}
+
+float InvertedMap1D::warp(float u, float* pdf) const {
+    const Inversion inv = invert(u);
+    *pdf = float(cells() * weight(inv.cell) / total());
+    return positionInCell(inv.cell, inv.fraction, cells());
+}
+
+int InvertedMap1D::sampleCell(float u, float* probability) const {
+    const int cell = invert(u).cell;
+    *probability = this->probability(cell);
+    return cell;
+}
+
+float InvertedMap1D::pdf(float uPrime) const {
+    return float(cells() * weight(cellOf(uPrime, cells())) / total());
+}
+
+float InvertedMap1D::cdf(float uPrime) const {
+    // The CDF is continuous, so locating u' on either side of a cell edge gives one value.
+    const int cell = cellOf(uPrime, cells());
+    const double within = std::clamp(double(uPrime), 0.0, 1.0) * cells() - cell;
+    return float((sums_[cell] + within * weight(cell)) / total());
+}
+
+InvertedMap2D::InvertedMap2D(int width, int height)
+    : width_(width), height_(height), rows_(height, InvertedMap1D(width)), rowTotals_(height) {
+    // Uniform: each row's running sums are 0, 1, …, width, so every row total is `width`.
+    rowTotals_.scale(width);
+}
+
+InvertedMap2D InvertedMap2D::fromWeights(std::span<const double> weights, int width, int height) {
+    if (weights.size() != size_t(width) * height)
+        throw std::invalid_argument("importance map weights do not match its size");
+    InvertedMap2D map(width, height);
+    std::vector<double> rowTotals(height);
+    for (int y = 0; y < height; ++y) {
+        const auto row = weights.subspan(size_t(y) * width, width);
+        for (double w : row)
+            rowTotals[y] += w;
+        // A row of zeros keeps running sums of zero: its total is zero, so it is never chosen,
+        // and it still adds correctly to other maps.
+        InvertedMap1D& sums = map.rows_[y];
+        if (rowTotals[y] > 0)
+            sums = InvertedMap1D::fromWeights(row);
+        else
+            sums.accumulate(sums, -1.0);
+    }
+    map.rowTotals_ = InvertedMap1D::fromWeights(rowTotals);
+    return map;
+}
+
+void InvertedMap2D::accumulate(const InvertedMap2D& other, double scale) {
+    if (other.width_ != width_ || other.height_ != height_)
+        throw std::invalid_argument("importance maps of different sizes");
+    for (int y = 0; y < height_; ++y)
+        rows_[y].accumulate(other.rows_[y], scale);
+    rowTotals_.accumulate(other.rowTotals_, scale);
+}
+
+void InvertedMap2D::scale(double factor) {
+    for (InvertedMap1D& row : rows_)
+        row.scale(factor);
+    rowTotals_.scale(factor);
+}
+
+Vec2 InvertedMap2D::warp(Vec2 u, float* pdf) const {
+    const InvertedMap1D::Inversion row = rowTotals_.invert(u.y);
+    const InvertedMap1D::Inversion column = rows_[row.cell].invert(u.x);
+    *pdf = float(double(width_) * height_ * weight(column.cell, row.cell) / total());
+    return {positionInCell(column.cell, column.fraction, width_),
+            positionInCell(row.cell, row.fraction, height_)};
+}
+
+float InvertedMap2D::pdf(Vec2 uPrime) const {
+    return float(double(width_) * height_ *
+                 weight(cellOf(uPrime.x, width_), cellOf(uPrime.y, height_)) / total());
+}
+
+Vec2 InvertedMap2D::cdf(Vec2 uPrime) const {
+    return {rows_[cellOf(uPrime.y, height_)].cdf(uPrime.x), rowTotals_.cdf(uPrime.y)};
+}
+
+}  // namespace rr::tais

@@ -1,0 +1,104 @@
+// TAIS importance maps (Cline, Adams & Egbert 2008, §3.3 and Algorithm 1): piecewise-constant
+// densities over n cells of [0, 1) (1-D maps: time, scatter distance; discrete maps: light
+// selection, bifurcation) or w × h cells of [0, 1)² (2-D maps: lens, point on light, scatter
+// direction).
+//
+// The paper keeps pixel maps "inverted" (as CDFs) for quick lookup and adds inverted maps
+// together (Algorithm 1, line 24). We store each map as running sums of its cell weights, not
+// normalised: every operation the algorithm performs — averaging the maps of seven
+// neighbours (fig. 3), blending in a pixel's finished temporary map — is linear in the
+// density, so it acts on the running sums directly, and sampling divides by the total. A 2-D
+// map keeps running sums per row plus a running sum of the row totals (the marginal over y),
+// the paper's "CDF for each row of the map, as well as an extra CDF of the Y axis marginal";
+// unnormalised rows keep that layout linear too.
+//
+// A preimage-space map warps uniform coordinates u to u' = F⁻¹(u) before standard importance
+// sampling, with density p_map(u') (TAIS: p_tot = p_map · p_is).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "math/vector.h"
+
+namespace rr::tais {
+
+class InvertedMap1D {
+  public:
+    // A uniform map of `cells` cells.
+    explicit InvertedMap1D(int cells);
+    // The map of non-negative, finite `weights` (not all zero).
+    static InvertedMap1D fromWeights(std::span<const double> weights);
+
+    int cells() const { return static_cast<int>(sums_.size()) - 1; }
+    double total() const { return sums_.back(); }
+    double weight(int cell) const { return sums_[cell + 1] - sums_[cell]; }
+
+    // this += scale · other (same size): averaging and blending maps (§3.3).
+    void accumulate(const InvertedMap1D& other, double scale = 1);
+    void scale(double factor);
+    // Divides by the total, so that maps of any history blend with equal weight.
+    void normalize() { scale(1.0 / total()); }
+
+    // Preimage warp: u ∈ [0, 1) → u' ∈ [0, 1) by inverting the piecewise-linear CDF, with the
+    // density of u' in *pdf (cells · weight / total).
+    float warp(float u, float* pdf) const;
+    // Discrete maps: a cell with probability weight / total, and that probability.
+    int sampleCell(float u, float* probability) const;
+    // Density of the warp at u' ∈ [0, 1].
+    float pdf(float uPrime) const;
+    // The CDF at u' ∈ [0, 1]: the inverse of warp().
+    float cdf(float uPrime) const;
+    float probability(int cell) const { return float(weight(cell) / total()); }
+
+    // The cell that u ∈ [0, 1) falls in under the inverse CDF, and the position within it.
+    struct Inversion {
+        int cell;
+        double fraction;
+    };
+    Inversion invert(float u) const;
+
+  private:
+    std::vector<double> sums_;  // sums_[i] = weight of cells < i; size cells + 1
+};
+
+class InvertedMap2D {
+  public:
+    // A uniform map of width × height cells (row y covers v ∈ [y/height, (y+1)/height)).
+    InvertedMap2D(int width, int height);
+    // The map of `weights` (width · height, row-major, non-negative, finite, not all zero).
+    static InvertedMap2D fromWeights(std::span<const double> weights, int width, int height);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    double total() const { return rowTotals_.total(); }
+    double weight(int x, int y) const { return rows_[y].weight(x); }
+
+    void accumulate(const InvertedMap2D& other, double scale = 1);
+    void scale(double factor);
+    void normalize() { scale(1.0 / total()); }
+
+    // Preimage warp of (u, v) ∈ [0, 1)²: v' by the marginal over rows, then u' within the row.
+    Vec2 warp(Vec2 u, float* pdf) const;
+    float pdf(Vec2 uPrime) const;
+    // The inverse of warp(): (conditional CDF within the row, marginal CDF over rows).
+    Vec2 cdf(Vec2 uPrime) const;
+
+  private:
+    int width_, height_;
+    std::vector<InvertedMap1D> rows_;  // unnormalised: row y's running sums
+    InvertedMap1D rowTotals_;          // running sums of the row totals
+};
+
+// TAIS fig. 3: a pixel's maps start as the average of its already-rendered neighbours' maps
+// (seven in the paper; fewer at the image's edges and in its first row).
+template <class Map>
+Map averageOf(std::span<const Map* const> neighbours) {
+    Map sum = *neighbours.front();
+    for (size_t i = 1; i < neighbours.size(); ++i)
+        sum.accumulate(*neighbours[i]);
+    sum.scale(1.0 / neighbours.size());
+    return sum;
+}
+
+}  // namespace rr::tais

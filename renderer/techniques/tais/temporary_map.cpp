@@ -1,0 +1,48 @@
+#include "techniques/tais/temporary_map.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace rr::tais {
+
+namespace {
+
+int cellOf(float u, int cells) {
+    return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
+}
+
+// Normalised weights plus `floor` per entry, renormalised (lines 22–23); all zero → uniform.
+std::vector<double> withFloor(const std::vector<double>& weights, double floor) {
+    const double sum = std::accumulate(weights.begin(), weights.end(), 0.0);
+    std::vector<double> out(weights.size(), 1.0 / weights.size());
+    if (!(sum > 0)) return out;
+    const double norm = 1.0 / (1.0 + floor * weights.size());
+    for (size_t i = 0; i < weights.size(); ++i)
+        out[i] = (weights[i] / sum + floor) * norm;
+    return out;
+}
+
+}  // namespace
+
+void TemporaryMap1D::splat(float u, double value) {
+    const int c = cellOf(u, cells());
+    for (int i = std::max(c - 1, 0); i <= std::min(c + 1, cells() - 1); ++i)
+        weights_[i] += value;
+}
+
+InvertedMap1D TemporaryMap1D::finish(double floorPerEntry) const {
+    return InvertedMap1D::fromWeights(withFloor(weights_, floorPerEntry));
+}
+
+void TemporaryMap2D::splat(Vec2 u, double value) {
+    const int cx = cellOf(u.x, width_), cy = cellOf(u.y, height_);
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, height_ - 1); ++y)
+        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, width_ - 1); ++x)
+            weights_[size_t(y) * width_ + x] += value;
+}
+
+InvertedMap2D TemporaryMap2D::finish(double floorPerEntry) const {
+    return InvertedMap2D::fromWeights(withFloor(weights_, floorPerEntry), width_, height_);
+}
+
+}  // namespace rr::tais

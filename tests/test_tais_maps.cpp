@@ -1,0 +1,208 @@
+// TAIS importance-map mechanics (Cline et al. 2008, §3.3, Algorithm 1): warping through a map
+// reproduces its density (χ²), inversion round-trips, propagation averages neighbours exactly,
+// temporary maps splat into the right cells, and the 1/n constant keeps every preimage-space
+// density strictly positive.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "support/chi2.h"
+#include "support/test_random.h"
+#include "techniques/tais/importance_map.h"
+#include "techniques/tais/temporary_map.h"
+
+namespace rr::test {
+namespace {
+
+using tais::InvertedMap1D;
+using tais::InvertedMap2D;
+
+// Every χ² run in this file: the 1-D warp, the 2-D warp, discrete selection, and two
+// negative controls.
+constexpr int kRuns = 5;
+const Chi2Family kChi2(kRuns);
+constexpr int kSamples = 1000000;
+
+// Weights with a zero cell, a dominant cell and small ones.
+const std::vector<double> kWeights1D = {0.5, 3, 0, 1, 7, 0.25, 2, 1};
+
+// Warped samples of an 8-cell map, histogrammed in 64 bins (8 per cell), against `density`
+// per cell (the expected count of a bin is N · density(cell) / 64).
+Chi2Outcome warp1DChi2(const InvertedMap1D& map, const std::vector<double>& cellProbability,
+                       uint64_t seed) {
+    constexpr int kBins = 64;
+    std::vector<double> observed(kBins, 0.0), expected(kBins);
+    for (int i = 0; i < kSamples; ++i) {
+        float pdf;
+        const float x = map.warp(uniform(seed, i), &pdf);
+        EXPECT_FLOAT_EQ(pdf, map.pdf(x));
+        observed[std::min(int(x * kBins), kBins - 1)] += 1;
+    }
+    const int perCell = kBins / int(cellProbability.size());
+    for (int b = 0; b < kBins; ++b)
+        expected[b] = kSamples * cellProbability[b / perCell] / perCell;
+    return chi2GoodnessOfFit(observed, expected);
+}
+
+std::vector<double> probabilities(const std::vector<double>& weights) {
+    double total = 0;
+    for (double w : weights)
+        total += w;
+    std::vector<double> p;
+    for (double w : weights)
+        p.push_back(w / total);
+    return p;
+}
+
+TEST(InvertedMap1D, WarpedSamplesFollowTheMapDensity) {
+    const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    kChi2.expectFits(warp1DChi2(map, probabilities(kWeights1D), 1), "1-D warp");
+}
+
+TEST(InvertedMap1D, NegativeControlRejectsTheUniformDensity) {
+    const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    kChi2.expectRejects(warp1DChi2(map, std::vector<double>(8, 1.0 / 8), 2), "1-D vs uniform");
+}
+
+TEST(InvertedMap1D, DiscreteSelectionFollowsTheWeights) {
+    const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    const std::vector<double> p = probabilities(kWeights1D);
+    std::vector<double> observed(p.size(), 0.0), expected(p.size());
+    for (int i = 0; i < kSamples; ++i) {
+        float probability;
+        const int cell = map.sampleCell(uniform(3, i), &probability);
+        EXPECT_FLOAT_EQ(probability, float(p[cell]));
+        observed[cell] += 1;
+    }
+    for (size_t c = 0; c < p.size(); ++c)
+        expected[c] = kSamples * p[c];
+    kChi2.expectFits(chi2GoodnessOfFit(observed, expected), "discrete selection");
+}
+
+TEST(InvertedMap1D, WarpAndCdfRoundTrip) {
+    const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    for (int i = 0; i < 10000; ++i) {
+        const float u = uniform(4, i);
+        float pdf;
+        const float x = map.warp(u, &pdf);
+        EXPECT_NEAR(map.cdf(x), u, 2e-6f) << "u = " << u;
+        EXPECT_GT(pdf, 0.0f);  // never lands in the zero cell
+    }
+}
+
+TEST(InvertedMap2D, WarpedSamplesFollowTheMapDensityAndRoundTrip) {
+    // 4 × 3 cells: a zero row (y = 1) and a zero cell.
+    const std::vector<double> weights = {1, 2, 0, 3, 0, 0, 0, 0, 5, 1, 1, 0.5};
+    const InvertedMap2D map = InvertedMap2D::fromWeights(weights, 4, 3);
+    const std::vector<double> p = probabilities(weights);
+    constexpr int kX = 16, kY = 12;  // 4 × 4 bins per cell
+    std::vector<double> observed(kX * kY, 0.0), expected(kX * kY), wrong(kX * kY);
+    for (int i = 0; i < kSamples; ++i) {
+        const Vec2 u = uniform2(5, i);
+        float pdf;
+        const Vec2 x = map.warp(u, &pdf);
+        EXPECT_FLOAT_EQ(pdf, map.pdf(x));
+        if (i < 10000) {
+            const Vec2 back = map.cdf(x);
+            EXPECT_NEAR(back.x, u.x, 2e-6f);
+            EXPECT_NEAR(back.y, u.y, 2e-6f);
+        }
+        observed[std::min(int(x.y * kY), kY - 1) * kX + std::min(int(x.x * kX), kX - 1)] += 1;
+    }
+    for (int by = 0; by < kY; ++by)
+        for (int bx = 0; bx < kX; ++bx) {
+            expected[by * kX + bx] = kSamples * p[(by / 4) * 4 + bx / 4] / 16;
+            wrong[by * kX + bx] = kSamples / double(kX * kY);
+        }
+    kChi2.expectFits(chi2GoodnessOfFit(observed, expected), "2-D warp");
+    kChi2.expectRejects(chi2GoodnessOfFit(observed, wrong), "2-D vs uniform");
+}
+
+// Fig. 3: the average of seven neighbours' maps is the map of their averaged densities.
+TEST(Propagation, AverageOfSevenNeighboursIsTheAverageDensity) {
+    std::vector<InvertedMap1D> maps;
+    std::vector<double> expected(8, 0.0);
+    for (int k = 0; k < 7; ++k) {
+        std::vector<double> w(8);
+        for (int c = 0; c < 8; ++c)
+            w[c] = (k + 1) * (c % 3) + 0.25 * k + (c == k ? 4 : 0);
+        maps.push_back(InvertedMap1D::fromWeights(w));
+        for (int c = 0; c < 8; ++c)
+            expected[c] += w[c] / 7;
+    }
+    std::vector<const InvertedMap1D*> neighbours;
+    for (const auto& m : maps)
+        neighbours.push_back(&m);
+    const InvertedMap1D average = tais::averageOf<InvertedMap1D>(neighbours);
+    for (int c = 0; c < 8; ++c)
+        EXPECT_NEAR(average.weight(c), expected[c], 1e-12) << "cell " << c;
+
+    std::vector<InvertedMap2D> maps2;
+    std::vector<double> expected2(6, 0.0);
+    for (int k = 0; k < 7; ++k) {
+        std::vector<double> w(6);
+        for (int c = 0; c < 6; ++c)
+            w[c] = (c == k % 6 ? 3.0 : 0.5) * (k + 1);
+        maps2.push_back(InvertedMap2D::fromWeights(w, 3, 2));
+        for (int c = 0; c < 6; ++c)
+            expected2[c] += w[c] / 7;
+    }
+    std::vector<const InvertedMap2D*> neighbours2;
+    for (const auto& m : maps2)
+        neighbours2.push_back(&m);
+    const InvertedMap2D average2 = tais::averageOf<InvertedMap2D>(neighbours2);
+    for (int c = 0; c < 6; ++c)
+        EXPECT_NEAR(average2.weight(c % 3, c / 3), expected2[c], 1e-12) << "cell " << c;
+    EXPECT_NEAR(average2.total(), std::accumulate(expected2.begin(), expected2.end(), 0.0), 1e-12);
+}
+
+// Algorithm 1, line 19: continuous maps take |L| into the cell and its neighbours (clipped at
+// the map's edges); discrete maps into one entry.
+TEST(TemporaryMaps, SplatIntoTheNeighbourhood) {
+    tais::TemporaryMap1D line(8);
+    line.splat(0.01f, 2.0);  // cell 0: cells 0 and 1
+    line.splat(0.5f, 1.0);   // cell 4: cells 3, 4, 5
+    line.add(7, 4.0);
+    const InvertedMap1D m = line.finish(0);
+    const double total = 2 * 2 + 3 * 1 + 4;
+    const double expected[8] = {2, 2, 0, 1, 1, 1, 0, 4};
+    for (int c = 0; c < 8; ++c)
+        EXPECT_NEAR(m.probability(c), expected[c] / total, 1e-7) << "cell " << c;
+
+    tais::TemporaryMap2D square(4, 4);
+    square.splat(Vec2(0.99f, 0.3f), 1.0);  // cell (3, 1): x 2..3, y 0..2
+    const InvertedMap2D s = square.finish(0);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+            EXPECT_NEAR(s.weight(x, y) / s.total(), (x >= 2 && y <= 2) ? 1.0 / 6 : 0.0, 1e-12)
+                << x << ", " << y;
+}
+
+// Lines 22–23: with 1/n added, every entry keeps at least (1/n) / 2 of the mass however the
+// samples fell, so every preimage-space density is at least 1/2: strictly positive, and the
+// estimator stays unbiased.
+TEST(TemporaryMaps, OneOverNKeepsEveryPreimageDensityPositive) {
+    tais::TemporaryMap1D concentrated(64);
+    concentrated.add(17, 1e6);
+    const InvertedMap1D m = concentrated.finish(tais::preimageFloor(64));
+    for (int c = 0; c < 64; ++c)
+        EXPECT_GE(m.pdf((c + 0.5f) / 64), 0.5f - 1e-6f) << "cell " << c;
+    EXPECT_NEAR(m.pdf(17.5f / 64), 64 * (1.0 + 1.0 / 64) / 2, 1e-4);
+
+    tais::TemporaryMap2D square(32, 32);
+    square.splat(Vec2(0.5f, 0.5f), 3.0);
+    const InvertedMap2D s = square.finish(tais::preimageFloor(32 * 32));
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            EXPECT_GE(s.pdf(Vec2((x + 0.5f) / 32, (y + 0.5f) / 32)), 0.5f - 1e-5f);
+
+    // A map that received nothing is uniform.
+    const InvertedMap1D empty = tais::TemporaryMap1D(16).finish(tais::preimageFloor(16));
+    for (int c = 0; c < 16; ++c)
+        EXPECT_NEAR(empty.pdf((c + 0.5f) / 16), 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace rr::test
