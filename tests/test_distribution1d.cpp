@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sampling/distribution1d.h"
+#include "sampling/distribution2d.h"
 #include "sampling/hash.h"
 #include "support/chi2.h"
 #include "support/test_random.h"
@@ -230,6 +231,36 @@ TEST(Distribution1DChi2NegativeControl, RejectsRawUAsRemappedU) {
     const std::vector<float> w = mixedWeights();
     kChi2.expectRejects(jointChi2(Distribution1D(w), normalized(w), 4, true),
                         "raw u given the index");
+}
+
+}  // namespace
+}  // namespace rr::test
+
+namespace rr::test {
+namespace {
+
+// invert() undoes sample(): the remapped coordinate and the index give back u (1-D), and a
+// sampled point gives back its u (2-D), which TAIS's preimage-space maps are indexed by.
+TEST(DistributionInverse, SampleThenInvertReturnsU) {
+    const std::vector<float> weights = {0.5f, 0, 3, 1, 0, 7, 0.25f, 2};
+    const Distribution1D d(weights);
+    for (int i = 0; i < 20000; ++i) {
+        const float u = uniform(40, i);
+        float remapped;
+        const int index = d.sample(u, nullptr, &remapped);
+        EXPECT_NEAR(d.invert(index, remapped), u, 2e-6f) << "u = " << u;
+    }
+    // 3 × 3 cells with zero cells and a zero row.
+    const std::vector<float> grid = {1, 0, 2, 0, 0, 0, 4, 1, 0.5f};
+    const Distribution2D d2(grid, 3, 3);
+    for (int i = 0; i < 20000; ++i) {
+        const Vec2 u = uniform2(41, i);
+        float pdf;
+        const Vec2 p = d2.sample(u, &pdf);
+        const Vec2 back = d2.invert(p);
+        EXPECT_NEAR(back.x, u.x, 2e-6f);
+        EXPECT_NEAR(back.y, u.y, 2e-6f);
+    }
 }
 
 }  // namespace

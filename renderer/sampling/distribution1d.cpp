@@ -35,4 +35,9 @@ int Distribution1D::sample(float u, float* pmf, float* uRemapped) const {
     return i;
 }
 
+float Distribution1D::invert(int index, float uRemapped) const {
+    const double u = cdf_[index] + double(uRemapped) * (cdf_[index + 1] - cdf_[index]);
+    return std::min(static_cast<float>(u), 0x1.fffffep-1f);
+}
+
 }  // namespace rr

@@ -16,6 +16,9 @@ class Distribution1D {
     // Returns an index with probability weight/sum, and the remapped u in [0,1) for reuse.
     int sample(float u, float* pmf = nullptr, float* uRemapped = nullptr) const;
     float pmf(int index) const { return pmf_[index]; }
+    // The inverse of sample(): the u that selects `index` with remapped value `uRemapped`
+    // (TAIS's preimage-space maps index decisions by the uniform coordinates behind them).
+    float invert(int index, float uRemapped) const;
     int size() const { return static_cast<int>(pmf_.size()); }
 
   private:

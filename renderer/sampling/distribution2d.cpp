@@ -35,4 +35,13 @@ float Distribution2D::pdf(Vec2 p) const {
     return rows_.pmf(row) * columns_[size_t(row)].pmf(col) * float(width_) * float(height_);
 }
 
+Vec2 Distribution2D::invert(Vec2 p) const {
+    const float x = std::clamp(p.x, 0.0f, 1.0f) * float(width_);
+    const float y = std::clamp(p.y, 0.0f, 1.0f) * float(height_);
+    const int col = std::clamp(static_cast<int>(x), 0, width_ - 1);
+    const int row = std::clamp(static_cast<int>(y), 0, height_ - 1);
+    return {columns_[size_t(row)].invert(col, std::clamp(x - float(col), 0.0f, 1.0f)),
+            rows_.invert(row, std::clamp(y - float(row), 0.0f, 1.0f))};
+}
+
 }  // namespace rr

@@ -23,6 +23,9 @@ class Distribution2D {
     Vec2 sample(Vec2 u, float* pdf) const;
     // Density at a point of [0,1]² (points on the upper edges belong to the last cells).
     float pdf(Vec2 p) const;
+    // The inverse of sample(): the u that sample() maps to the point `p` of a cell of non-zero
+    // weight (TAIS's point-on-light map indexes light samples by these coordinates).
+    Vec2 invert(Vec2 p) const;
 
   private:
     int width_ = 0, height_ = 0;
