@@ -11,6 +11,7 @@
 #include "support/chi2.h"
 #include "support/test_random.h"
 #include "techniques/tais/importance_map.h"
+#include "techniques/tais/scan.h"
 #include "techniques/tais/temporary_map.h"
 
 namespace rr::test {
@@ -202,6 +203,57 @@ TEST(TemporaryMaps, OneOverNKeepsEveryPreimageDensityPositive) {
     const InvertedMap1D empty = tais::TemporaryMap1D(16).finish(tais::preimageFloor(16));
     for (int c = 0; c < 16; ++c)
         EXPECT_NEAR(empty.pdf((c + 0.5f) / 16), 1.0f, 1e-6f);
+}
+
+// §3.3: "we scan back and forth": a band's rows alternate direction from its first row.
+TEST(Scan, SerpentineOrderAlternatesFromTheBandsFirstRow) {
+    using P = tais::PixelCoord;
+    const std::vector<P> expected = {{0, 4}, {1, 4}, {2, 4}, {2, 5}, {1, 5}, {0, 5}, {0, 6}};
+    const std::vector<P> order = tais::serpentineOrder(3, 4, 7);
+    ASSERT_EQ(order.size(), 9u);
+    for (size_t i = 0; i < expected.size(); ++i)
+        EXPECT_EQ(order[i], expected[i]) << "position " << i;
+}
+
+// Fig. 3 as we read it: x−2 … x+2 in the row above and the two previous pixels of this row in
+// its scan direction, clipped at the edges; none for the band's first pixel.
+TEST(Scan, RenderedNeighboursAreSevenAwayFromTheEdges) {
+    using P = tais::PixelCoord;
+    EXPECT_TRUE(tais::renderedNeighbours(0, 0, 8).empty());
+    EXPECT_EQ(tais::renderedNeighbours(3, 0, 8), (std::vector<P>{{2, 0}, {1, 0}}));
+    // Row 1 runs right to left: its rendered pixels are to the right.
+    EXPECT_EQ(tais::renderedNeighbours(4, 1, 8),
+              (std::vector<P>{{2, 0}, {3, 0}, {4, 0}, {5, 0}, {6, 0}, {5, 1}, {6, 1}}));
+    EXPECT_EQ(tais::renderedNeighbours(7, 1, 8), (std::vector<P>{{5, 0}, {6, 0}, {7, 0}}));
+    EXPECT_EQ(tais::renderedNeighbours(1, 2, 8),
+              (std::vector<P>{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {0, 2}}));
+}
+
+// Propagation through two stored rows: a pixel starts from the average of its rendered
+// neighbours' maps, computed here by hand.
+TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
+    constexpr int kWidth = 4;
+    auto mapOf = [](int x, int y) {
+        std::vector<double> w = {1, 1, 1, 1};
+        w[(x + y) % 4] += 10.0 * (x + 1) + y;
+        return InvertedMap1D::fromWeights(w);
+    };
+    tais::MapRows<InvertedMap1D> rows(kWidth, InvertedMap1D(4));
+    EXPECT_NEAR(rows.startingMaps(0, 0).probability(2), 0.25, 1e-12);  // no neighbour
+    for (const tais::PixelCoord& p : tais::serpentineOrder(kWidth, 0, 1))
+        rows.store(p.x, mapOf(p.x, p.y));
+    rows.nextRow();
+    rows.store(3, mapOf(3, 1));  // row 1 runs right to left
+    rows.store(2, mapOf(2, 1));
+    // Pixel (1, 1): x−2 … x+2 of row 0 clipped to 0 … 3, and (2, 1), (3, 1).
+    const tais::PixelCoord expected[] = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {2, 1}, {3, 1}};
+    const InvertedMap1D start = rows.startingMaps(1, 1);
+    for (int c = 0; c < 4; ++c) {
+        double sum = 0;
+        for (const auto& n : expected)
+            sum += mapOf(n.x, n.y).weight(c);
+        EXPECT_NEAR(start.weight(c), sum / 6, 1e-12) << "cell " << c;
+    }
 }
 
 }  // namespace

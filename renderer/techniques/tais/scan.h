@@ -1,0 +1,70 @@
+// TAIS's scan order and importance propagation (Cline et al. 2008, §3.3, fig. 3): pixels are
+// rendered row by row, alternating direction ("we scan back and forth to allow importance to
+// propagate both left and right, as well as down"), and each pixel starts from the average of
+// the maps of its already-rendered neighbours, of which only two rows are kept in memory.
+//
+// The paper's figure 3 is not in its text; we read its seven neighbours as the five pixels
+// x−2 … x+2 of the row above and the two pixels before this one in the current row's scan
+// direction (all already rendered under a serpentine scan), clipped at the image edges.
+//
+// A band of rows is scanned by one thread from its first row on, with no maps from the band
+// above: the image is then the same for any number of threads when bands are fixed.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+namespace rr::tais {
+
+struct PixelCoord {
+    int x = 0, y = 0;
+    bool operator==(const PixelCoord&) const = default;
+};
+
+// Rows [y0, y1) of an image `width` pixels wide in serpentine order: the band's first row
+// left to right, the next right to left, and so on.
+std::vector<PixelCoord> serpentineOrder(int width, int y0, int y1);
+
+// The already-rendered neighbours of pixel x in row `rowInBand` of a band (see above).
+std::vector<PixelCoord> renderedNeighbours(int x, int rowInBand, int width);
+
+// The maps of two rows of a band: the row being rendered and the one above it. `Maps` is a
+// pixel's set of importance maps: copyable, with accumulate(other) and scale(factor).
+template <class Maps>
+class MapRows {
+  public:
+    // `initial`: the maps of a pixel with no rendered neighbour (uniform).
+    MapRows(int width, Maps initial)
+        : width_(width), initial_(std::move(initial)), above_(width), current_(width) {}
+
+    // Fig. 3: the average of the maps of the pixel's rendered neighbours (the initial maps
+    // for the band's first pixel).
+    Maps startingMaps(int x, int rowInBand) const {
+        const std::vector<PixelCoord> neighbours = renderedNeighbours(x, rowInBand, width_);
+        if (neighbours.empty()) return initial_;
+        Maps sum = mapsAt(neighbours.front(), rowInBand);
+        for (size_t i = 1; i < neighbours.size(); ++i)
+            sum.accumulate(mapsAt(neighbours[i], rowInBand));
+        sum.scale(1.0 / double(neighbours.size()));
+        return sum;
+    }
+    // The pixel's maps once it is rendered (Algorithm 1, line 24).
+    void store(int x, Maps maps) { current_[x] = std::move(maps); }
+    // Moves on to the next row: the current row becomes the row above.
+    void nextRow() {
+        above_.swap(current_);
+        for (auto& m : current_)
+            m.reset();
+    }
+
+  private:
+    const Maps& mapsAt(const PixelCoord& p, int rowInBand) const {
+        return *(p.y == rowInBand ? current_ : above_)[size_t(p.x)];
+    }
+
+    int width_;
+    Maps initial_;
+    std::vector<std::optional<Maps>> above_, current_;
+};
+
+}  // namespace rr::tais
