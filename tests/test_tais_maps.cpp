@@ -1,7 +1,7 @@
-// TAIS importance-map mechanics (Cline et al. 2008, §3.3, Algorithm 1): warping through a map
-// reproduces its density (χ²), inversion round-trips, propagation averages neighbours exactly,
-// temporary maps splat into the right cells, and the 1/n constant keeps every preimage-space
-// density strictly positive.
+// TAIS mechanics (Cline et al. 2008, §3.3–3.4, Algorithm 1): warping through a map reproduces
+// its density (χ²), inversion round-trips, propagation averages neighbours exactly, temporary
+// maps splat into the right cells, the 1/n constant keeps every preimage-space density
+// strictly positive, the scan is serpentine, and maximum contribution filtering follows eq. 4.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "support/chi2.h"
 #include "support/test_random.h"
+#include "techniques/tais/contribution_filter.h"
 #include "techniques/tais/importance_map.h"
 #include "techniques/tais/scan.h"
 #include "techniques/tais/temporary_map.h"
@@ -254,6 +255,25 @@ TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
             sum += mapOf(n.x, n.y).weight(c);
         EXPECT_NEAR(start.weight(c), sum / 6, 1e-12) << "cell " << c;
     }
+}
+
+// Eq. (4) by hand. With n = 4 samples the factor is max(32/4, 0.02) = 8: a sample is clamped
+// only if it is brighter than 8 times the others together. With n = 2000 the factor is 0.02.
+TEST(ContributionFilter, ClampsToEquationFour) {
+    std::vector<Rgb> few = {Rgb(1.0f), Rgb(1.0f), Rgb(1.0f), Rgb(100.0f)};
+    EXPECT_EQ(tais::filterMaximumContribution(few), 1);
+    EXPECT_NEAR(few[3].luminance(), 3 * 8.0f, 1e-4f);  // (s − s_i) · 8 = 3 · 8
+    EXPECT_FLOAT_EQ(few[0].g, 1.0f);
+
+    std::vector<Rgb> many(2000, Rgb(0.5f, 1.0f, 2.0f));
+    const float unit = many[0].luminance();
+    many[7] = Rgb(0.5f, 1.0f, 2.0f) * 100.0f;  // brighter than 0.02 × the other 1999
+    EXPECT_EQ(tais::filterMaximumContribution(many), 1);
+    EXPECT_NEAR(many[7].luminance(), 1999 * unit * 0.02f, 1e-3f);
+    EXPECT_NEAR(many[7].b / many[7].r, 4.0f, 1e-5f);  // the colour keeps its hue
+
+    std::vector<Rgb> even(16, Rgb(0.3f));
+    EXPECT_EQ(tais::filterMaximumContribution(even), 0);
 }
 
 }  // namespace
