@@ -27,8 +27,15 @@ class Phong final : public Material {
     uint8_t lobes() const override { return kReflection | kDiffuse | kGlossy; }
 
   private:
-    // Probability of sampling the diffuse part; negative when both parts are black.
-    static float diffuseProbability(const Rgb& kd, const Rgb& ks);
+    // The textures at one shading point, evaluated once per call.
+    struct Parameters {
+        Rgb kd, ks;
+        double n;
+        float diffuseProbability;  // of the cosine strategy; negative when both parts are black
+    };
+    Parameters at(const ShadingContext& ctx) const;
+    static Rgb evalWith(const Parameters& p, const Vec3& wo, const Vec3& wi);
+    static float pdfWith(const Parameters& p, const Vec3& wo, const Vec3& wi);
 
     TexturePtr<Rgb> diffuse_, specular_;
     TexturePtr<float> exponent_;
