@@ -114,6 +114,11 @@ PreparedRender prepare(const RenderCommandOptions& o) {
     applyCommandLine(p.document, o);
     p.out = outputPath(o);
     p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
+    if (o.timeLimit > 0 && dynamic_cast<const BandIntegrator*>(p.loaded.integrator.get()))
+        throw ConfigError("/integrator/type",
+                          p.loaded.integrator->name() +
+                              " renders a fixed number of samples per pixel in scan order; "
+                              "--time-limit cannot stop it part-way (use --spp)");
     if (!o.checkOnly) checkOutputWritable(p.out);
     return p;
 }
@@ -213,6 +218,10 @@ int runRenderCommand(const RenderCommandOptions& o) {
         Film film(settings.width, settings.height);
         stats = render(*p.loaded.scene, *p.loaded.integrator, options, film,
                        [&](const RenderProgress& progress) { bar.update(progress); });
+        if (stats.spp == 0) {  // interrupted before any image was complete
+            bar.finish("interrupted before a complete image; nothing written");
+            return 130;
+        }
         ExrImage image = filmToExr(film);
         addMetadata(o, p, options, stats, threads, &image);
         writeOutputs(o, p.out, image);

@@ -18,7 +18,7 @@ struct DirectSettings {
     int bsdfSamples = 1;
 };
 
-class DirectLighting final : public Integrator {
+class DirectLighting final : public SampleIntegrator {
   public:
     explicit DirectLighting(const DirectSettings& settings) : settings_(settings) {}
 

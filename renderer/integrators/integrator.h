@@ -10,6 +10,7 @@
 #include <string>
 
 #include "math/rgb.h"
+#include "render/film.h"
 #include "sampling/sampler.h"
 #include "scene/scene.h"
 
@@ -35,13 +36,35 @@ class Integrator {
     virtual std::string name() const = 0;
     // Parameters as recorded in the output metadata.
     virtual nlohmann::json parameters() const = 0;
-    virtual Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
-                         RayCounters& rays) const = 0;
     // The most draws of one decision a pixel sample makes (DecisionSite::repeatCount).
     virtual uint32_t decisionRepeats() const { return 1; }
     // Whether the estimate accounts for participating media; the loader refuses a scene with
     // media for an integrator that would silently ignore them.
     virtual bool supportsMedia() const { return false; }
+};
+
+// Integrators whose pixel samples are independent: the render loop schedules them in
+// progressive passes, in any order and on any thread.
+class SampleIntegrator : public Integrator {
+  public:
+    virtual Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
+                         RayCounters& rays) const = 0;
+};
+
+// Integrators whose pixels learn from the pixels rendered before them (TAIS): each band of
+// rows is rendered in the integrator's own order with a fixed number of samples per pixel; the
+// render loop runs bands in parallel. Bands are fixed by the integrator, not by the thread
+// count, so the image is the same for any number of threads.
+class BandIntegrator : public Integrator {
+  public:
+    virtual int bandRows() const = 0;
+    struct BandResult {
+        RayCounters rays;
+        uint64_t nonFiniteSamples = 0;  // dropped (counted as zero) and reported
+    };
+    // Renders rows [y0, y1) of `film` with `spp` samples per pixel.
+    virtual BandResult renderBand(const Scene& scene, const Sampler& sampler, int y0, int y1,
+                                  uint32_t spp, Film& film) const = 0;
 };
 
 // The camera ray for pixel (x, y): film position, lens and shutter decisions are drawn only

@@ -28,7 +28,7 @@ struct PathSettings {
     int rrDepth = 4;
 };
 
-class PathTracer final : public Integrator {
+class PathTracer final : public SampleIntegrator {
   public:
     // Hard cap on "unlimited" paths (max_depth −1): only pathological scenes (a closed glass
     // shell with total internal reflection) ever reach it.

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 
 namespace rr {
 
@@ -50,10 +51,10 @@ class ProgressReporter {
     double lastReport_ = -1;
 };
 
-}  // namespace
-
-RenderStats render(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
-                   Film& film, const ProgressCallback& progress) {
+// Independent samples: progressive passes over tiles.
+RenderStats renderPasses(const Scene& scene, const SampleIntegrator& integrator,
+                         const RenderOptions& options, Film& film,
+                         const ProgressCallback& progress) {
     const int width = film.width(), height = film.height();
     const int tilesX = (width + kTileSize - 1) / kTileSize;
     const int tilesY = (height + kTileSize - 1) / kTileSize;
@@ -135,6 +136,56 @@ RenderStats render(const Scene& scene, const Integrator& integrator, const Rende
     stats.rays = RayCounters{camera.load(), extension.load(), shadow.load()};
     stats.nonFiniteSamples = nonFinite.load();
     return stats;
+}
+
+// Bands of rows, each rendered in the integrator's order, in parallel; one pass of all samples.
+RenderStats renderBands(const Scene& scene, const BandIntegrator& integrator,
+                        const RenderOptions& options, Film& film,
+                        const ProgressCallback& progress) {
+    if (options.timeLimit > 0)
+        throw std::invalid_argument(integrator.name() + " cannot render to a time limit");
+    const int height = film.height(), rows = integrator.bandRows();
+    const int bands = (height + rows - 1) / rows;
+    const Sampler sampler(options.sampler, options.seed, options.samplerSetSize);
+    const Clock::time_point start = Clock::now();
+    ProgressReporter reporter(
+        progress, start, RenderProgress{0, uint64_t(film.width()) * height * options.spp, 0, 0, 0});
+    std::mutex mutex;
+    RenderStats stats;
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, bands, 1),
+            [&](const tbb::blocked_range<int>& range) {
+                for (int band = range.begin(); band != range.end(); ++band) {
+                    if (options.cancel && options.cancel->load()) return;
+                    const int y0 = band * rows, y1 = std::min(y0 + rows, height);
+                    const BandIntegrator::BandResult r =
+                        integrator.renderBand(scene, sampler, y0, y1, options.spp, film);
+                    {
+                        std::lock_guard lock(mutex);
+                        stats.rays += r.rays;
+                        stats.nonFiniteSamples += r.nonFiniteSamples;
+                    }
+                    reporter.addSamples(uint64_t(film.width()) * (y1 - y0) * options.spp);
+                }
+            },
+            tbb::simple_partitioner());
+    });
+    stats.interrupted = options.cancel && options.cancel->load();
+    stats.spp = stats.interrupted ? 0 : options.spp;
+    stats.seconds = secondsSince(start);
+    return stats;
+}
+
+}  // namespace
+
+RenderStats render(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+                   Film& film, const ProgressCallback& progress) {
+    if (const auto* bands = dynamic_cast<const BandIntegrator*>(&integrator))
+        return renderBands(scene, *bands, options, film, progress);
+    return renderPasses(scene, dynamic_cast<const SampleIntegrator&>(integrator), options, film,
+                        progress);
 }
 
 }  // namespace rr
