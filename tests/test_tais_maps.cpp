@@ -241,11 +241,14 @@ TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
     };
     tais::MapRows<InvertedMap1D> rows(kWidth, InvertedMap1D(4));
     EXPECT_NEAR(rows.startingMaps(0, 0).probability(2), 0.25, 1e-12);  // no neighbour
-    for (const tais::PixelCoord& p : tais::serpentineOrder(kWidth, 0, 1))
-        rows.store(p.x, mapOf(p.x, p.y));
+    for (const tais::PixelCoord& p : tais::serpentineOrder(kWidth, 0, 1)) {
+        InvertedMap1D m = mapOf(p.x, p.y);
+        rows.store(p.x, &m);
+    }
     rows.nextRow();
-    rows.store(3, mapOf(3, 1));  // row 1 runs right to left
-    rows.store(2, mapOf(2, 1));
+    InvertedMap1D m3 = mapOf(3, 1), m2 = mapOf(2, 1);
+    rows.store(3, &m3);  // row 1 runs right to left
+    rows.store(2, &m2);
     // Pixel (1, 1): x−2 … x+2 of row 0 clipped to 0 … 3, and (2, 1), (3, 1).
     const tais::PixelCoord expected[] = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {2, 1}, {3, 1}};
     const InvertedMap1D start = rows.startingMaps(1, 1);

@@ -78,6 +78,7 @@ std::string featureList(const SceneFeatures& f) {
     };
     add(f.motionBlur, "motion_blur");
     add(f.thinLens, "thin_lens");
+    add(f.bifurcation, "bifurcation");
     add(f.media, "media");
     return s.empty() ? "none" : s;
 }

@@ -41,6 +41,10 @@ class Integrator {
     // Whether the estimate accounts for participating media; the loader refuses a scene with
     // media for an integrator that would silently ignore them.
     virtual bool supportsMedia() const { return false; }
+    // Called by the loader once the scene is built, before any rendering: an integrator that
+    // adapts to the scene's contents resolves its choices here (and throws ConfigError for a
+    // choice the scene cannot support).
+    virtual void prepare(const Scene& /*scene*/) {}
 };
 
 // Integrators whose pixel samples are independent: the render loop schedules them in

@@ -2,6 +2,7 @@
 #include "integrators/path_tracer.h"
 #include "loader/factories.h"
 #include "loader/type_table.h"
+#include "techniques/tais/tais_integrator.h"
 
 namespace rr {
 
@@ -27,6 +28,7 @@ std::unique_ptr<Integrator> makeIntegrator(ObjectReader& json, const PathSetting
              s.bsdfSamples = static_cast<int>(j.getInt("bsdf_samples", 1, Range::closed(1, 1024)));
              return std::make_unique<DirectLighting>(s);
          }},
+        {"tais", tais::makeTaisIntegrator},
     };
     return buildByType(json, "integrator", table, path);
 }

@@ -382,6 +382,7 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     loaded.scene = builder.build(render.lightSelection);
     if (loaded.scene->lights().empty())
         throw ConfigError("", "the scene has no light: add an emitter shape or a light");
+    integrator->prepare(*loaded.scene);
     loaded.integrator = std::move(integrator);
     loaded.render = render;
     return loaded;

@@ -48,6 +48,16 @@ class Light {
     // bounding sphere of the scene for their shadow-ray targets and their power.
     virtual void preprocess(const Vec3& /*sceneCenter*/, float /*sceneRadius*/) {}
 
+    // Whether invertSample() can map this light's samples back to their coordinates.
+    virtual bool canInvertSample() const { return false; }
+    // The coordinates u for which sample(reference, u, ...) yields the point `point` on this
+    // light, seen in unit direction `direction` from `reference` (infinite lights: the
+    // direction alone). False when the light cannot invert its sampling.
+    virtual bool invertSample(const Vec3& /*reference*/, const Vec3& /*direction*/,
+                              const Vec3& /*point*/, Vec2* /*u*/) const {
+        return false;
+    }
+
     // Index in the scene's light list; set by the scene.
     int index() const { return index_; }
     void setIndex(int i) { index_ = i; }

@@ -52,6 +52,13 @@ class Material {
                         BsdfSample* out) const = 0;
     virtual void peaks(const ShadingContext& ctx, const Vec3& wo, LobePeaks* out) const = 0;
 
+    // Materials that both reflect and transmit (glass) choose between the two with uLobe:
+    // sample() reflects exactly when uLobe < reflectionChoice(ctx, wo), and the sample's pdf
+    // is that probability (or its complement). TAIS's bifurcation map re-weights this choice.
+    virtual float reflectionChoice(const ShadingContext& /*ctx*/, const Vec3& /*wo*/) const {
+        return 1;
+    }
+
     // Union of the lobes this material can produce.
     virtual uint8_t lobes() const = 0;
     bool hasNonSpecular() const { return (lobes() & (kDiffuse | kGlossy)) != 0; }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scene/lights/area_light.h"
+#include "scene/material.h"
 
 namespace rr {
 
@@ -152,8 +153,12 @@ std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
     s.features_.motionBlur = anyMotion && s.camera_->hasShutterInterval();
     s.features_.thinLens = s.camera_->isThinLens();
     s.features_.media = s.medium_ != nullptr;
-    for (const std::unique_ptr<Shape>& shape : s.shapes_)
+    for (const std::unique_ptr<Shape>& shape : s.shapes_) {
         s.features_.media = s.features_.media || shape->interiorMedium();
+        const Material* m = shape->material();
+        s.features_.bifurcation = s.features_.bifurcation ||
+                                  (m && (m->lobes() & kReflection) && (m->lobes() & kTransmission));
+    }
     s.lightSelector_ = makeLightSelector(selection, s.lights_);
     return std::move(scene_);
 }

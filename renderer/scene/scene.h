@@ -27,6 +27,8 @@ struct SceneFeatures {
     bool motionBlur = false;  // some shape moves and the shutter is open for a while
     bool thinLens = false;    // the camera has an aperture
     bool media = false;       // participating media: a scene medium or a shape's interior
+    // Some surface both reflects and transmits (glass): its paths bifurcate.
+    bool bifurcation = false;
 };
 
 class Scene {

@@ -25,6 +25,9 @@ class Dielectric final : public Material {
 
     // Probability that sample() reflects (= Fresnel reflectance for wo).
     float reflectProbability(const Vec3& wo) const { return fresnelDielectric(wo.z, eta_); }
+    float reflectionChoice(const ShadingContext&, const Vec3& wo) const override {
+        return reflectProbability(wo);
+    }
 
   private:
     bool refract(const Vec3& wo, Vec3* wt, float* etaRelative) const;

@@ -53,18 +53,35 @@ void InvertedMap1D::accumulate(const InvertedMap1D& other, double scale) {
         sums_[i] += scale * other.sums_[i];
 }
 
+void InvertedMap1D::accumulateWeights(std::span<const double> weights, double scale,
+                                      double perCell) {
+    if (weights.size() + 1 != sums_.size())
+        throw std::invalid_argument("importance maps of different sizes");
+    double running = 0;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        running += scale * weights[i] + perCell;
+        sums_[i + 1] += running;
+    }
+}
+
+void InvertedMap1D::accumulateUniform(double perCell) {
+    for (size_t i = 1; i < sums_.size(); ++i)
+        sums_[i] += perCell * double(i);
+}
+
 void InvertedMap1D::scale(double factor) {
     for (double& s : sums_)
         s *= factor;
 }
 
-InvertedMap1D::Inversion InvertedMap1D::invert(float u) const {
-    const double target = double(u) * total();
+Inversion invertRunningSums(std::span<const double> sums, float u) {
+    const int cells = int(sums.size()) - 1;
+    const double target = double(u) * sums.back();
     // The first running sum above the target ends the cell: zero-weight cells are skipped.
-    const auto above = std::upper_bound(sums_.begin(), sums_.end(), target);
-    const int cell = std::clamp(int(above - sums_.begin()) - 1, 0, cells() - 1);
-    const double w = weight(cell);
-    return {cell, w > 0 ? std::clamp((target - sums_[cell]) / w, 0.0, 1.0) : 0.0};
+    const auto above = std::upper_bound(sums.begin(), sums.end(), target);
+    const int cell = std::clamp(int(above - sums.begin()) - 1, 0, cells - 1);
+    const double w = sums[cell + 1] - sums[cell];
+    return {cell, w > 0 ? std::clamp((target - sums[cell]) / w, 0.0, 1.0) : 0.0};
 }
 
 float InvertedMap1D::warp(float u, float* pdf) const {
@@ -91,52 +108,72 @@ float InvertedMap1D::cdf(float uPrime) const {
 }
 
 InvertedMap2D::InvertedMap2D(int width, int height)
-    : width_(width), height_(height), rows_(height, InvertedMap1D(width)), rowTotals_(height) {
+    : width_(width), height_(height), sums_(size_t(width + 1) * height), rowTotals_(height) {
     // Uniform: each row's running sums are 0, 1, …, width, so every row total is `width`.
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x <= width; ++x)
+            sums_[size_t(y) * (width + 1) + x] = x;
     rowTotals_.scale(width);
 }
 
 InvertedMap2D InvertedMap2D::fromWeights(std::span<const double> weights, int width, int height) {
     if (weights.size() != size_t(width) * height)
         throw std::invalid_argument("importance map weights do not match its size");
+    for (double w : weights)
+        if (!(w >= 0) || !std::isfinite(w))
+            throw std::invalid_argument("importance map weights must be finite and >= 0");
     InvertedMap2D map(width, height);
-    std::vector<double> rowTotals(height);
-    for (int y = 0; y < height; ++y) {
-        const auto row = weights.subspan(size_t(y) * width, width);
-        for (double w : row)
-            rowTotals[y] += w;
-        // A row of zeros keeps running sums of zero: its total is zero, so it is never chosen,
-        // and it still adds correctly to other maps.
-        InvertedMap1D& sums = map.rows_[y];
-        if (rowTotals[y] > 0)
-            sums = InvertedMap1D::fromWeights(row);
-        else
-            sums.accumulate(sums, -1.0);
-    }
-    map.rowTotals_ = InvertedMap1D::fromWeights(rowTotals);
+    map.scale(0);
+    map.accumulateWeights(weights, 1);
+    if (!(map.total() > 0)) throw std::invalid_argument("importance map weights are all zero");
     return map;
 }
 
 void InvertedMap2D::accumulate(const InvertedMap2D& other, double scale) {
     if (other.width_ != width_ || other.height_ != height_)
         throw std::invalid_argument("importance maps of different sizes");
-    for (int y = 0; y < height_; ++y)
-        rows_[y].accumulate(other.rows_[y], scale);
+    for (size_t i = 0; i < sums_.size(); ++i)
+        sums_[i] += scale * other.sums_[i];
     rowTotals_.accumulate(other.rowTotals_, scale);
 }
 
+void InvertedMap2D::accumulateWeights(std::span<const double> weights, double scale,
+                                      double perCell) {
+    if (weights.size() != size_t(width_) * height_)
+        throw std::invalid_argument("importance map weights do not match its size");
+    // A row of zeros adds running sums of zero: never chosen on its own, and still linear.
+    std::vector<double> totals(static_cast<size_t>(height_));
+    for (int y = 0; y < height_; ++y) {
+        double* row = sums_.data() + size_t(y) * (width_ + 1);
+        double running = 0;
+        for (int x = 0; x < width_; ++x) {
+            running += scale * weights[size_t(y) * width_ + x] + perCell;
+            row[x + 1] += running;
+        }
+        totals[size_t(y)] = running;
+    }
+    rowTotals_.accumulateWeights(totals, 1);
+}
+
+void InvertedMap2D::accumulateUniform(double perCell) {
+    for (int y = 0; y < height_; ++y)
+        for (int x = 1; x <= width_; ++x)
+            sums_[size_t(y) * (width_ + 1) + x] += perCell * x;
+    rowTotals_.accumulateUniform(perCell * width_);
+}
+
 void InvertedMap2D::scale(double factor) {
-    for (InvertedMap1D& row : rows_)
-        row.scale(factor);
+    for (double& s : sums_)
+        s *= factor;
     rowTotals_.scale(factor);
 }
 
 Vec2 InvertedMap2D::warp(Vec2 u, float* pdf) const {
-    const InvertedMap1D::Inversion row = rowTotals_.invert(u.y);
-    const InvertedMap1D::Inversion column = rows_[row.cell].invert(u.x);
-    *pdf = float(double(width_) * height_ * weight(column.cell, row.cell) / total());
+    const Inversion r = rowTotals_.invert(u.y);
+    const Inversion column = invertRunningSums(row(r.cell), u.x);
+    *pdf = float(double(width_) * height_ * weight(column.cell, r.cell) / total());
     return {positionInCell(column.cell, column.fraction, width_),
-            positionInCell(row.cell, row.fraction, height_)};
+            positionInCell(r.cell, r.fraction, height_)};
 }
 
 float InvertedMap2D::pdf(Vec2 uPrime) const {
@@ -145,7 +182,11 @@ float InvertedMap2D::pdf(Vec2 uPrime) const {
 }
 
 Vec2 InvertedMap2D::cdf(Vec2 uPrime) const {
-    return {rows_[cellOf(uPrime.y, height_)].cdf(uPrime.x), rowTotals_.cdf(uPrime.y)};
+    const std::span<const double> sums = row(cellOf(uPrime.y, height_));
+    const int cell = cellOf(uPrime.x, width_);
+    const double within = std::clamp(double(uPrime.x), 0.0, 1.0) * width_ - cell;
+    const double w = sums[cell + 1] - sums[cell];
+    return {float((sums[cell] + within * w) / sums.back()), rowTotals_.cdf(uPrime.y)};
 }
 
 }  // namespace rr::tais

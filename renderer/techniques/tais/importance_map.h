@@ -23,6 +23,14 @@
 
 namespace rr::tais {
 
+// Inversion of running sums `sums` (size cells + 1, non-decreasing, sums.back() > 0): the cell
+// that u ∈ [0, 1) falls in under the inverse CDF, and the position within it.
+struct Inversion {
+    int cell;
+    double fraction;
+};
+Inversion invertRunningSums(std::span<const double> sums, float u);
+
 class InvertedMap1D {
   public:
     // A uniform map of `cells` cells.
@@ -36,6 +44,10 @@ class InvertedMap1D {
 
     // this += scale · other (same size): averaging and blending maps (§3.3).
     void accumulate(const InvertedMap1D& other, double scale = 1);
+    // this += the map of scale · `weights` + `perCell` in every cell, without building it.
+    void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
+    // this += `perCell` in every cell.
+    void accumulateUniform(double perCell);
     void scale(double factor);
     // Divides by the total, so that maps of any history blend with equal weight.
     void normalize() { scale(1.0 / total()); }
@@ -51,12 +63,7 @@ class InvertedMap1D {
     float cdf(float uPrime) const;
     float probability(int cell) const { return float(weight(cell) / total()); }
 
-    // The cell that u ∈ [0, 1) falls in under the inverse CDF, and the position within it.
-    struct Inversion {
-        int cell;
-        double fraction;
-    };
-    Inversion invert(float u) const;
+    Inversion invert(float u) const { return invertRunningSums(sums_, u); }
 
   private:
     std::vector<double> sums_;  // sums_[i] = weight of cells < i; size cells + 1
@@ -72,9 +79,15 @@ class InvertedMap2D {
     int width() const { return width_; }
     int height() const { return height_; }
     double total() const { return rowTotals_.total(); }
-    double weight(int x, int y) const { return rows_[y].weight(x); }
+    double weight(int x, int y) const {
+        const double* row = rowSums(y);
+        return row[x + 1] - row[x];
+    }
 
     void accumulate(const InvertedMap2D& other, double scale = 1);
+    // this += the map of scale · `weights` (row-major) + `perCell` in every cell.
+    void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
+    void accumulateUniform(double perCell);
     void scale(double factor);
     void normalize() { scale(1.0 / total()); }
 
@@ -85,9 +98,14 @@ class InvertedMap2D {
     Vec2 cdf(Vec2 uPrime) const;
 
   private:
+    const double* rowSums(int y) const { return sums_.data() + size_t(y) * (width_ + 1); }
+    std::span<const double> row(int y) const { return {rowSums(y), size_t(width_) + 1}; }
+
     int width_, height_;
-    std::vector<InvertedMap1D> rows_;  // unnormalised: row y's running sums
-    InvertedMap1D rowTotals_;          // running sums of the row totals
+    // Row y's running sums (unnormalised) at [y · (width + 1), (y + 1) · (width + 1)): one
+    // contiguous block, so averaging and blending maps is one pass over memory.
+    std::vector<double> sums_;
+    InvertedMap1D rowTotals_;  // running sums of the row totals
 };
 
 // TAIS fig. 3: a pixel's maps start as the average of its already-rendered neighbours' maps

@@ -11,7 +11,8 @@
 // above: the image is then the same for any number of threads when bands are fixed.
 #pragma once
 
-#include <optional>
+#include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace rr::tais {
@@ -33,38 +34,47 @@ std::vector<PixelCoord> renderedNeighbours(int x, int rowInBand, int width);
 template <class Maps>
 class MapRows {
   public:
-    // `initial`: the maps of a pixel with no rendered neighbour (uniform).
+    // `initial`: the maps of a pixel with no rendered neighbour (uniform). Every slot holds a
+    // copy from the start, so storing and averaging reuse their memory pixel after pixel.
     MapRows(int width, Maps initial)
-        : width_(width), initial_(std::move(initial)), above_(width), current_(width) {}
+        : width_(width),
+          initial_(std::move(initial)),
+          above_(width, initial_),
+          current_(width, initial_) {}
 
-    // Fig. 3: the average of the maps of the pixel's rendered neighbours (the initial maps
-    // for the band's first pixel).
-    Maps startingMaps(int x, int rowInBand) const {
+    // Fig. 3: the sum of the maps of the pixel's rendered neighbours (the initial maps for
+    // the band's first pixel) into *out; returns how many were summed (at least 1).
+    int neighbourSum(int x, int rowInBand, Maps* out) const {
         const std::vector<PixelCoord> neighbours = renderedNeighbours(x, rowInBand, width_);
-        if (neighbours.empty()) return initial_;
-        Maps sum = mapsAt(neighbours.front(), rowInBand);
+        if (neighbours.empty()) {
+            *out = initial_;
+            return 1;
+        }
+        *out = mapsAt(neighbours.front(), rowInBand);
         for (size_t i = 1; i < neighbours.size(); ++i)
-            sum.accumulate(mapsAt(neighbours[i], rowInBand));
-        sum.scale(1.0 / double(neighbours.size()));
-        return sum;
+            out->accumulate(mapsAt(neighbours[i], rowInBand));
+        return int(neighbours.size());
     }
-    // The pixel's maps once it is rendered (Algorithm 1, line 24).
-    void store(int x, Maps maps) { current_[x] = std::move(maps); }
+    // Their average.
+    Maps startingMaps(int x, int rowInBand) const {
+        Maps maps = initial_;
+        maps.scale(1.0 / neighbourSum(x, rowInBand, &maps));
+        return maps;
+    }
+    // The pixel's maps once it is rendered (Algorithm 1, line 24). They are swapped into the
+    // row, so *maps is left holding stale maps whose memory the next pixel reuses.
+    void store(int x, Maps* maps) { std::swap(current_[size_t(x)], *maps); }
     // Moves on to the next row: the current row becomes the row above.
-    void nextRow() {
-        above_.swap(current_);
-        for (auto& m : current_)
-            m.reset();
-    }
+    void nextRow() { above_.swap(current_); }
 
   private:
     const Maps& mapsAt(const PixelCoord& p, int rowInBand) const {
-        return *(p.y == rowInBand ? current_ : above_)[size_t(p.x)];
+        return (p.y == rowInBand ? current_ : above_)[size_t(p.x)];
     }
 
     int width_;
     Maps initial_;
-    std::vector<std::optional<Maps>> above_, current_;
+    std::vector<Maps> above_, current_;
 };
 
 }  // namespace rr::tais

@@ -22,6 +22,20 @@ std::vector<double> withFloor(const std::vector<double>& weights, double floor) 
     return out;
 }
 
+// map += the finished map of `weights`: (w / Σw + floor) / (1 + n · floor) per entry (lines
+// 22–23), uniform when nothing was added.
+template <class Map>
+void addFinished(const std::vector<double>& weights, Map& map, double floor) {
+    const double sum = std::accumulate(weights.begin(), weights.end(), 0.0);
+    const double n = double(weights.size());
+    if (!(sum > 0)) {
+        map.accumulateUniform(1.0 / n);
+        return;
+    }
+    const double norm = 1.0 / (1.0 + floor * n);
+    map.accumulateWeights(weights, norm / sum, floor * norm);
+}
+
 }  // namespace
 
 void TemporaryMap1D::splat(float u, double value) {
@@ -34,6 +48,10 @@ InvertedMap1D TemporaryMap1D::finish(double floorPerEntry) const {
     return InvertedMap1D::fromWeights(withFloor(weights_, floorPerEntry));
 }
 
+void TemporaryMap1D::addFinishedTo(InvertedMap1D& map, double floorPerEntry) const {
+    addFinished(weights_, map, floorPerEntry);
+}
+
 void TemporaryMap2D::splat(Vec2 u, double value) {
     const int cx = cellOf(u.x, width_), cy = cellOf(u.y, height_);
     for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, height_ - 1); ++y)
@@ -43,6 +61,10 @@ void TemporaryMap2D::splat(Vec2 u, double value) {
 
 InvertedMap2D TemporaryMap2D::finish(double floorPerEntry) const {
     return InvertedMap2D::fromWeights(withFloor(weights_, floorPerEntry), width_, height_);
+}
+
+void TemporaryMap2D::addFinishedTo(InvertedMap2D& map, double floorPerEntry) const {
+    addFinished(weights_, map, floorPerEntry);
 }
 
 }  // namespace rr::tais

@@ -27,6 +27,8 @@ class TemporaryMap1D {
     // Lines 22–24: normalised, `floorPerEntry` added to every entry, renormalised, inverted.
     // A map that received nothing becomes uniform.
     InvertedMap1D finish(double floorPerEntry) const;
+    // map += finish(floorPerEntry), without building the finished map.
+    void addFinishedTo(InvertedMap1D& map, double floorPerEntry) const;
     int cells() const { return static_cast<int>(weights_.size()); }
 
   private:
@@ -43,6 +45,8 @@ class TemporaryMap2D {
     // edges of the map).
     void splat(Vec2 u, double value);
     InvertedMap2D finish(double floorPerEntry) const;
+    void addFinishedTo(InvertedMap2D& map, double floorPerEntry) const;
+    int cells() const { return width_ * height_; }
 
   private:
     int width_, height_;

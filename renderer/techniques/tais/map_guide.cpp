@@ -1,0 +1,273 @@
+#include "techniques/tais/map_guide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rr::tais {
+
+namespace {
+
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+// The brightness |L| a map accumulates: the mean of the channels' magnitudes, so that a red, a
+// green and a blue light of equal power count equally.
+double brightness(const Rgb& c) {
+    return (std::abs(double(c.r)) + std::abs(double(c.g)) + std::abs(double(c.b))) / 3.0;
+}
+
+// u ∈ [a, b) rescaled to [0, 1): the rest of a coordinate that made a discrete choice.
+float rescale(float u, float a, float b) {
+    return std::min((u - a) / (b - a), kOneMinusEpsilon);
+}
+
+}  // namespace
+
+void MapGuide::record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
+                      bool isContribution) {
+    if (recordCount_ == kMaxRecords) throw std::logic_error("TAIS: too many decisions recorded");
+    records_[recordCount_++] = Record{kind, cell, coordinates, amount, isContribution};
+}
+
+Ray MapGuide::cameraRay(int x, int y, float* weight) {
+    const Camera& camera = scene_.camera();
+    const Vec2 film = sample_.get2D(Decision::FilmPosition);
+    float w = 1;
+    Vec2 lens(0.5f, 0.5f);
+    if (camera.isThinLens()) {
+        lens = sample_.get2D(Decision::Lens);
+        if (maps_.lens) {
+            float p;
+            lens = maps_.lens->warp(lens, &p);
+            w /= p;
+            record(MapKind::Lens, 0, lens, Rgb(0.0f));
+        }
+    }
+    float time = 0;
+    if (camera.hasShutterInterval()) {
+        time = sample_.get1D(Decision::Time);
+        if (maps_.time) {
+            float p;
+            time = maps_.time->warp(time, &p);
+            w /= p;
+            record(MapKind::Time, 0, Vec2(time, 0.0f), Rgb(0.0f));
+        }
+    }
+    *weight = w;
+    return camera.generateRay(Vec2(float(x) + film.x, float(y) + film.y), lens, time);
+}
+
+float MapGuide::flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf) {
+    const float u = sample_.get1D(Decision::MediumDistance, vertex);
+    if (vertex != 0 || !maps_.scatterDistance) {
+        *warpPdf = 1;
+        return u;
+    }
+    const float warped = maps_.scatterDistance->warp(u, warpPdf);
+    record(MapKind::ScatterDistance, 0, Vec2(warped, 0.0f), radiance);
+    return warped;
+}
+
+float MapGuide::selectionPmf(const Light& light, const Vec3& reference) const {
+    const float standard = scene_.lightSelector().pmf(light, reference);
+    if (!maps_.lightSelection) return standard;
+    const float a = settings_.alpha;
+    return a * maps_.lightSelection->probability(light.index()) + (1 - a) * standard;
+}
+
+float MapGuide::pointOnLightPdf(const Light& light, const Vec3& reference, const Vec3& direction,
+                                const Vec3& point) const {
+    Vec2 u;
+    if (!warpsPointOn(light) || !light.invertSample(reference, direction, point, &u)) return 1;
+    return maps_.pointOnLight->pdf(u);
+}
+
+bool MapGuide::sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
+                           float* pdf, const Light** chosen) {
+    const LightSelector& selector = scene_.lightSelector();
+    const float uSelect = sample_.get1D(Decision::LightSelect, vertex);
+    Vec2 uPoint = sample_.get2D(Decision::LightPoint, vertex);
+    if (!guidesLights(vertex)) {
+        float selectPmf;
+        const Light* light = selector.select(uSelect, reference, &selectPmf);
+        if (!light || !light->sample(reference, uPoint, time, ls)) return false;
+        *pdf = selectPmf * ls->pdf;
+        *chosen = light;
+        return true;
+    }
+
+    const Light* light;
+    float selectPmf;
+    if (maps_.lightSelection) {
+        // Eq. (2): the map with probability α, the scene's selector otherwise.
+        const float a = settings_.alpha;
+        float unused;
+        light = uSelect < a ? scene_.lights()[size_t(maps_.lightSelection->sampleCell(
+                                  rescale(uSelect, 0, a), &unused))]
+                            : selector.select(rescale(uSelect, a, 1), reference, &unused);
+        if (!light) return false;
+        selectPmf = selectionPmf(*light, reference);
+        record(MapKind::LightSelection, light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f), true);
+    } else {
+        light = selector.select(uSelect, reference, &selectPmf);
+        if (!light) return false;
+    }
+    float warp = 1;
+    if (warpsPointOn(*light)) {
+        uPoint = maps_.pointOnLight->warp(uPoint, &warp);
+        record(MapKind::PointOnLight, 0, uPoint, Rgb(0.0f), true);
+    }
+    lightRecords_ = (maps_.lightSelection ? 1 : 0) + (warpsPointOn(*light) ? 1 : 0);
+    if (!light->sample(reference, uPoint, time, ls)) return false;
+    *pdf = selectPmf * ls->pdf * warp;  // eq. (3) for the point
+    *chosen = light;
+    return true;
+}
+
+void MapGuide::lightContribution(uint32_t vertex, const Rgb& contribution) {
+    if (!guidesLights(vertex)) return;
+    for (int i = recordCount_ - lightRecords_; i < recordCount_; ++i)
+        records_[i].amount = contribution;
+    lightRecords_ = 0;
+}
+
+float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
+                         const SurfaceHit& hit) const {
+    const float pointPdf = light.pdf(reference, hit);
+    if (!guidesLights(vertex)) return scene_.lightSelector().pmf(light, reference) * pointPdf;
+    const Vec3 direction = normalize(hit.position - reference);
+    return selectionPmf(light, reference) * pointPdf *
+           pointOnLightPdf(light, reference, direction, hit.position);
+}
+
+float MapGuide::lightPdf(uint32_t vertex, const Light& light, const Vec3& reference,
+                         const Vec3& w) const {
+    const float directionPdf = light.directionPdf(w);
+    if (!guidesLights(vertex)) return scene_.lightSelector().pmf(light, reference) * directionPdf;
+    return selectionPmf(light, reference) * directionPdf *
+           pointOnLightPdf(light, reference, w, reference + w);
+}
+
+bool MapGuide::sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
+                          const Frame& frame, const Vec3& wo, const Rgb& radiance, BsdfSample* bs) {
+    const uint8_t lobes = material.lobes();
+    if (maps_.bifurcation && (lobes & kReflection) && (lobes & kTransmission) &&
+        int(vertex) < settings_.bifurcationVertices)
+        return sampleBifurcation(vertex, material, ctx, wo, radiance, bs);
+    if (lobes & kSpecular)
+        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
+                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
+    const InvertedMap2D* map = directionMap();
+    ++bounce_;
+    if (!map)
+        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
+                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
+    return sampleDirection(vertex, *map, material, ctx, frame, wo, radiance, bs);
+}
+
+bool MapGuide::sampleBifurcation(uint32_t vertex, const Material& material,
+                                 const ShadingContext& ctx, const Vec3& wo, const Rgb& radiance,
+                                 BsdfSample* bs) {
+    // Eq. (2) over {reflect, transmit}: the map's conditional probability of reflecting at
+    // this vertex, mixed with the material's own (Fresnel) choice.
+    const double reflectWeight = maps_.bifurcation->weight(bifurcationCell(int(vertex), true));
+    const double transmitWeight = maps_.bifurcation->weight(bifurcationCell(int(vertex), false));
+    const float q = float(reflectWeight / (reflectWeight + transmitWeight));
+    const float fresnel = material.reflectionChoice(ctx, wo);
+    const float a = settings_.alpha;
+    const float reflectProbability = a * q + (1 - a) * fresnel;
+    const float u = sample_.get1D(Decision::BsdfLobe, vertex);
+    const bool reflect = u < reflectProbability;
+    // A branch the material cannot take carries no light: the path ends with value 0.
+    if (reflect ? !(fresnel > 0) : !(fresnel < 1)) return false;
+    // The material's own lobe coordinate for the chosen branch (it reflects iff uLobe < F).
+    const float uLobe =
+        reflect
+            ? std::min(fresnel * rescale(u, 0, reflectProbability), std::nextafter(fresnel, 0.0f))
+            : std::min(fresnel + (1 - fresnel) * rescale(u, reflectProbability, 1),
+                       kOneMinusEpsilon);
+    if (!material.sample(ctx, wo, uLobe, sample_.get2D(Decision::BsdfDirection, vertex), bs))
+        return false;
+    const float chosen = reflect ? reflectProbability : 1 - reflectProbability;
+    bs->weight *= bs->pdf / chosen;
+    bs->pdf = chosen;
+    record(MapKind::Bifurcation, bifurcationCell(int(vertex), reflect), Vec2(0.0f, 0.0f), radiance);
+    return true;
+}
+
+bool MapGuide::sampleDirection(uint32_t vertex, const InvertedMap2D& map, const Material& material,
+                               const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
+                               const Rgb& radiance, BsdfSample* bs) {
+    const float a = settings_.alpha;
+    const float u = sample_.get1D(Decision::BsdfLobe, vertex);
+    const Vec2 uDirection = sample_.get2D(Decision::BsdfDirection, vertex);
+    Vec2 cell;
+    if (u < a) {
+        // From the map: a world direction, evaluated through the material.
+        float mapPdf;
+        cell = map.warp(uDirection, &mapPdf);
+        const Vec3 wi = frame.toLocal(mapToDirection(cell));
+        const Rgb f = material.eval(ctx, wo, wi);
+        if (f.isBlack()) return false;  // the sample's value is 0 from here on
+        const float pdf = a * directionPdfFromMap(mapPdf) + (1 - a) * material.pdf(ctx, wo, wi);
+        bs->wi = wi;
+        bs->weight = f * (1.0f / pdf);
+        bs->pdf = pdf;
+        bs->eta = 1;
+        bs->lobe = uint8_t((wi.z * wo.z > 0 ? kReflection : kTransmission) | kDiffuse);
+    } else {
+        if (!material.sample(ctx, wo, rescale(u, a, 1), uDirection, bs)) return false;
+        cell = directionToMap(frame.toWorld(bs->wi));
+        const float pdf = a * directionPdfFromMap(map.pdf(cell)) + (1 - a) * bs->pdf;
+        bs->weight *= bs->pdf / pdf;
+        bs->pdf = pdf;
+    }
+    record(MapKind::ScatterDirection, bounce_ - 1, cell, radiance);
+    return true;
+}
+
+float MapGuide::bsdfPdf(uint32_t /*vertex*/, const Material& material, const ShadingContext& ctx,
+                        const Frame& frame, const Vec3& wo, const Vec3& wi) const {
+    const float pdf = material.pdf(ctx, wo, wi);
+    const InvertedMap2D* map = (material.lobes() & kSpecular) ? nullptr : directionMap();
+    if (!map) return pdf;
+    const float a = settings_.alpha;
+    return a * directionPdfFromMap(map->pdf(directionToMap(frame.toWorld(wi)))) + (1 - a) * pdf;
+}
+
+void MapGuide::splat(const Rgb& value, TemporaryMaps& maps) const {
+    for (int i = 0; i < recordCount_; ++i) {
+        const Record& r = records_[i];
+        const double v = settings_.credit == Credit::Path ? brightness(value)
+                         : r.isContribution               ? brightness(r.amount)
+                                                          : brightness(value - r.amount);
+        if (!(v > 0)) continue;
+        switch (r.kind) {
+            case MapKind::Time:
+                maps.time->splat(r.coordinates.x, v);
+                break;
+            case MapKind::Lens:
+                maps.lens->splat(r.coordinates, v);
+                break;
+            case MapKind::ScatterDistance:
+                maps.scatterDistance->splat(r.coordinates.x, v);
+                break;
+            case MapKind::Bifurcation:
+                maps.bifurcation->add(r.cell, v);
+                break;
+            case MapKind::LightSelection:
+                maps.lightSelection->add(r.cell, v);
+                break;
+            case MapKind::PointOnLight:
+                maps.pointOnLight->splat(r.coordinates, v);
+                break;
+            case MapKind::ScatterDirection:
+                maps.scatterDirection[size_t(r.cell)].splat(r.coordinates, v);
+                break;
+            case MapKind::Count:
+                break;
+        }
+    }
+}
+
+}  // namespace rr::tais

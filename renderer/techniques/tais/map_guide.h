@@ -1,0 +1,111 @@
+// The decisions of one TAIS path sample (Cline et al. 2008, Algorithm 1, lines 6–17), as a
+// Guide for the path walk (integrators/path_walk.h; StandardSampling there documents each
+// member). Which decision each map steers:
+//  - time and lens: the camera's; scatter distance: the camera ray's free flight (vertex 0);
+//  - light selection and point on light: next-event estimation at the first scattering vertex
+//    (vertex 0), the one a pixel's neighbours share most;
+//  - bifurcation: reflect or transmit at every vertex v < bifurcationVertices;
+//  - scatter direction: the first (and second) surface vertex whose material has no specular
+//    lobe (media vertices sample their phase function as usual).
+// Preimage maps warp the decision's coordinates and divide the sample by p_map (eq. 3). World
+// maps choose with probability α from the map and otherwise by standard sampling, with the
+// mixture density of eq. (2) in the sample's weight and in every MIS weight that involves the
+// decision, so the estimator stays unbiased. A point-on-light map warps only lights that can
+// invert their sampling (Light::canInvertSample), since MIS must find the map density of a
+// point that BSDF sampling hit; other lights are sampled as usual.
+//
+// The guide remembers where each decision fell; splat() then adds the sample to the pixel's
+// temporary maps (line 19) at those coordinates.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "integrators/path_walk.h"
+#include "techniques/tais/pixel_maps.h"
+#include "techniques/tais/tais_settings.h"
+
+namespace rr::tais {
+
+class MapGuide {
+  public:
+    // `invertible[i]`: whether scene light i can invert its samples.
+    MapGuide(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
+             const TaisSettings& settings, std::span<const char> invertible)
+        : scene_(scene),
+          sample_(sample),
+          maps_(maps),
+          settings_(settings),
+          invertible_(invertible) {}
+
+    // The camera ray through pixel (x, y), its time and lens coordinates warped by their maps;
+    // *weight = 1 / (p_time · p_lens).
+    Ray cameraRay(int x, int y, float* weight);
+
+    float flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf);
+    bool sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
+                     float* pdf, const Light** chosen);
+    void lightContribution(uint32_t vertex, const Rgb& contribution);
+    float lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
+                   const SurfaceHit& hit) const;
+    float lightPdf(uint32_t vertex, const Light& light, const Vec3& reference, const Vec3& w) const;
+    bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
+                    const Frame& frame, const Vec3& wo, const Rgb& radiance, BsdfSample* bs);
+    float bsdfPdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
+                  const Frame& frame, const Vec3& wo, const Vec3& wi) const;
+    const PixelSample& sample() const { return sample_; }
+
+    // Algorithm 1, line 19: the sample's value L(x) added to the temporary maps at the
+    // coordinates of its decisions, credited as settings.credit says.
+    void splat(const Rgb& value, TemporaryMaps& maps) const;
+
+    // The most decisions one path records: bifurcation vertices plus the other maps.
+    static constexpr int kMaxRecords = 40;
+
+  private:
+    // Where one decision fell. `amount` is the path's radiance before the decision (the
+    // value credited is what came after it), or for a light sample its own contribution.
+    struct Record {
+        MapKind kind;
+        int cell = 0;  // discrete maps: the entry; scatter direction: the bounce
+        Vec2 coordinates;
+        Rgb amount = Rgb(0.0f);
+        bool isContribution = false;
+    };
+    void record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
+                bool isContribution = false);
+
+    bool guidesLights(uint32_t vertex) const {
+        return vertex == 0 && (maps_.lightSelection || maps_.pointOnLight);
+    }
+    bool warpsPointOn(const Light& light) const {
+        return maps_.pointOnLight && invertible_[size_t(light.index())];
+    }
+    // Eq. (2) for the light-selection map: α q(light) + (1 − α) p_selector(light).
+    float selectionPmf(const Light& light, const Vec3& reference) const;
+    // The point-on-light map's density at the coordinates of `point` (1 when not warped).
+    float pointOnLightPdf(const Light& light, const Vec3& reference, const Vec3& direction,
+                          const Vec3& point) const;
+    const InvertedMap2D* directionMap() const {
+        return bounce_ < int(maps_.scatterDirection.size()) ? &maps_.scatterDirection[bounce_]
+                                                            : nullptr;
+    }
+    bool sampleBifurcation(uint32_t vertex, const Material& material, const ShadingContext& ctx,
+                           const Vec3& wo, const Rgb& radiance, BsdfSample* bs);
+    bool sampleDirection(uint32_t vertex, const InvertedMap2D& map, const Material& material,
+                         const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
+                         const Rgb& radiance, BsdfSample* bs);
+
+    const Scene& scene_;
+    const PixelSample& sample_;
+    const PixelMaps& maps_;
+    const TaisSettings& settings_;
+    std::span<const char> invertible_;
+
+    int bounce_ = 0;  // non-specular surface vertices so far
+    std::array<Record, kMaxRecords> records_;
+    int recordCount_ = 0;
+    int lightRecords_ = 0;  // records of the current light sample, awaiting its contribution
+};
+
+}  // namespace rr::tais

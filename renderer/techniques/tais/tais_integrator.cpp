@@ -1,0 +1,195 @@
+#include "techniques/tais/tais_integrator.h"
+
+#include "integrators/path_walk.h"
+#include "loader/config_error.h"
+#include "loader/json_reader.h"
+#include "techniques/tais/contribution_filter.h"
+#include "techniques/tais/map_guide.h"
+#include "techniques/tais/scan.h"
+
+namespace rr::tais {
+
+namespace {
+
+std::string mapList(const TaisSettings& s) {
+    std::string list;
+    for (int k = 0; k < kMapKinds; ++k)
+        if (s.enabled[k]) list += (list.empty() ? "" : ", ") + std::string(mapName(MapKind(k)));
+    return list.empty() ? "none" : list;
+}
+
+// Renders one pixel's samples with its maps fixed (Algorithm 1, lines 3–20).
+template <bool kMedia>
+Rgb renderSample(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
+                 const TaisSettings& settings, std::span<const char> invertible, int x, int y,
+                 TemporaryMaps& temporary, RayCounters& rays) {
+    MapGuide guide(scene, sample, maps, settings, invertible);
+    float weight;
+    const Ray ray = guide.cameraRay(x, y, &weight);
+    ++rays.camera;
+    const Rgb value = PathWalk<kMedia, MapGuide>(scene, guide, rays, settings.path,
+                                                 /*nee=*/true, ray, weight)
+                          .run();
+    if (value.isFinite()) guide.splat(value, temporary);
+    return value;
+}
+
+}  // namespace
+
+TaisIntegrator::TaisIntegrator(const TaisSettings& settings,
+                               std::array<std::string, kMapKinds> mapPointers)
+    : settings_(settings), mapPointers_(std::move(mapPointers)) {}
+
+nlohmann::json TaisIntegrator::parameters() const {
+    static const char* credits[] = {"path", "downstream"};
+    return {{"type", name()},
+            {"maps", settings_.automatic ? "auto" : "listed"},
+            {"maps_used", mapList(settings_)},
+            {"alpha", settings_.alpha},
+            {"time_cells", settings_.timeCells},
+            {"scatter_distance_cells", settings_.scatterDistanceCells},
+            {"lens_size", settings_.lensSize},
+            {"point_on_light_size", settings_.pointOnLightSize},
+            {"scatter_direction_size", settings_.scatterDirectionSize},
+            {"scatter_direction_bounces", settings_.scatterDirectionBounces},
+            {"bifurcation_vertices", settings_.bifurcationVertices},
+            {"credit", credits[static_cast<int>(settings_.credit)]},
+            {"contribution_filter", settings_.contributionFilter},
+            {"band_rows", settings_.bandRows},
+            {"max_depth", settings_.path.maxDepth},
+            {"rr_depth", settings_.path.rrDepth}};
+}
+
+bool sceneHasDecision(const Scene& scene, MapKind kind) {
+    const SceneFeatures& f = scene.features();
+    switch (kind) {
+        case MapKind::Time:
+            return f.motionBlur;
+        case MapKind::Lens:
+            return f.thinLens;
+        case MapKind::ScatterDistance:
+            return f.media;
+        case MapKind::Bifurcation:
+            return f.bifurcation;
+        case MapKind::LightSelection:
+            return scene.lights().size() > 1;
+        case MapKind::PointOnLight:
+            for (const Light* light : scene.lights())
+                if (light->canInvertSample()) return true;
+            return false;
+        case MapKind::ScatterDirection:
+            return true;
+        case MapKind::Count:
+            break;
+    }
+    return false;
+}
+
+void TaisIntegrator::prepare(const Scene& scene) {
+    for (int k = 0; k < kMapKinds; ++k) {
+        const MapKind kind = MapKind(k);
+        const bool has = sceneHasDecision(scene, kind);
+        if (settings_.automatic) {
+            settings_.enabled[k] = has;
+        } else if (settings_.enabled[k] && !has) {
+            throw ConfigError(mapPointers_[k], "the scene has no decision for the " +
+                                                   std::string(mapName(kind)) +
+                                                   " map (see \"auto\")");
+        }
+    }
+    invertible_.clear();
+    for (const Light* light : scene.lights())
+        invertible_.push_back(light->canInvertSample() ? 1 : 0);
+}
+
+BandIntegrator::BandResult TaisIntegrator::renderBand(const Scene& scene, const Sampler& sampler,
+                                                      int y0, int y1, uint32_t spp,
+                                                      Film& film) const {
+    const int width = film.width();
+    const int lights = static_cast<int>(scene.lights().size());
+    MapRows<PixelMaps> rows(width, PixelMaps::uniform(settings_, lights));
+    TemporaryMaps temporary(settings_, lights);
+    std::vector<Rgb> values(spp);
+    PixelMaps maps = PixelMaps::uniform(settings_, lights);
+    BandResult result;
+    int row = 0;
+    for (const PixelCoord& p : serpentineOrder(width, y0, y1)) {
+        if (p.y - y0 != row) {
+            rows.nextRow();
+            row = p.y - y0;
+        }
+        // Fig. 3: the neighbours' average, normalised (which makes it independent of how many
+        // were averaged) so that it and this pixel's own samples, normalised too, weigh
+        // equally in what the pixel passes on.
+        rows.neighbourSum(p.x, row, &maps);
+        maps.normalize();
+        temporary.clear();
+        const uint32_t pixel = uint32_t(p.y) * uint32_t(width) + uint32_t(p.x);
+        for (uint32_t s = 0; s < spp; ++s) {
+            const PixelSample sample = sampler.at(pixel, s);
+            Rgb v = scene.features().media
+                        ? renderSample<true>(scene, sample, maps, settings_, invertible_, p.x, p.y,
+                                             temporary, result.rays)
+                        : renderSample<false>(scene, sample, maps, settings_, invertible_, p.x, p.y,
+                                              temporary, result.rays);
+            if (!v.isFinite()) {
+                ++result.nonFiniteSamples;
+                v = Rgb(0.0f);
+            }
+            values[s] = v;
+        }
+        if (settings_.contributionFilter) filterMaximumContribution(values);  // line 21
+        for (const Rgb& v : values)
+            film.add(p.x, p.y, v);
+        temporary.addFinishedTo(maps, settings_.worldFloorShare);  // lines 22–24
+        rows.store(p.x, &maps);
+    }
+    return result;
+}
+
+std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& j, const PathSettings& path) {
+    TaisSettings s;
+    s.path = path;
+    std::array<std::string, kMapKinds> pointers;
+    if (const Json* maps = j.rawOptional("maps")) {
+        if (maps->is_string() && maps->get<std::string>() == "auto") {
+            s.automatic = true;
+        } else if (maps->is_array()) {
+            s.automatic = false;
+            for (size_t i = 0; i < maps->size(); ++i) {
+                const std::string pointer = j.pointerTo("maps") + "/" + std::to_string(i);
+                MapKind kind;
+                if (!(*maps)[i].is_string() || !parseMapName((*maps)[i].get<std::string>(), &kind))
+                    throw ConfigError(pointer,
+                                      "expected a map name: time, lens, scatter_distance, "
+                                      "bifurcation, light_selection, point_on_light or "
+                                      "scatter_direction");
+                if (s.uses(kind)) throw ConfigError(pointer, "map listed twice");
+                s.enabled[static_cast<int>(kind)] = true;
+                pointers[static_cast<int>(kind)] = pointer;
+            }
+        } else {
+            j.fail("maps", "expected \"auto\" or an array of map names");
+        }
+    }
+    s.alpha = j.getFloat("alpha", s.alpha, Range::open(0, 1));
+    auto size = [&](const char* key, int fallback, int lo, int hi) {
+        return static_cast<int>(j.getInt(key, fallback, Range::closed(lo, hi)));
+    };
+    s.timeCells = size("time_cells", s.timeCells, 2, 4096);
+    s.scatterDistanceCells = size("scatter_distance_cells", s.scatterDistanceCells, 2, 4096);
+    s.lensSize = size("lens_size", s.lensSize, 2, 256);
+    s.pointOnLightSize = size("point_on_light_size", s.pointOnLightSize, 2, 256);
+    s.scatterDirectionSize = size("scatter_direction_size", s.scatterDirectionSize, 2, 256);
+    s.scatterDirectionBounces = size("scatter_direction_bounces", s.scatterDirectionBounces, 1, 2);
+    s.bifurcationVertices =
+        size("bifurcation_vertices", s.bifurcationVertices, 1, MapGuide::kMaxRecords - 8);
+    s.credit = j.getChoice("credit", {"downstream", "path"}, "downstream") == "path"
+                   ? Credit::Path
+                   : Credit::Downstream;
+    s.contributionFilter = j.getBool("contribution_filter", false);
+    s.bandRows = size("band_rows", s.bandRows, 1, 1 << 20);
+    return std::make_unique<TaisIntegrator>(s, std::move(pointers));
+}
+
+}  // namespace rr::tais

@@ -1,0 +1,61 @@
+// Table-driven adaptive importance sampling (Cline, Adams & Egbert 2008): `path_mis` whose
+// decisions are steered by per-pixel importance maps learned from the pixels rendered before
+// (map_guide.h says which map steers which decision).
+//
+// Rendering (Algorithm 1 and §3.3): rows are scanned back and forth; each pixel starts from the
+// average of its rendered neighbours' maps (normalised, fig. 3), renders all its samples while
+// collecting them in temporary maps, optionally clamps them (eq. 4, biased), and stores its
+// maps plus the finished temporary maps for the pixels after it. The maps are fixed while a
+// pixel renders, so each pixel's estimate is unbiased.
+//
+// Parallelism: the scan makes every pixel depend on the one before it, so the image is cut into
+// bands of `bandRows` rows, each scanned on its own from uniform maps. Bands depend only on the
+// settings, never on the thread count, so the image is bit-identical for any number of threads;
+// the price is that each band's first rows learn from scratch (measured against one serial scan,
+// bandRows ≥ height, in results/tables/tais.md).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.h"
+#include "techniques/tais/tais_settings.h"
+
+namespace rr {
+class ObjectReader;
+}
+
+namespace rr::tais {
+
+class TaisIntegrator final : public BandIntegrator {
+  public:
+    // `mapPointers[k]`: where the config asked for map k (for errors); empty in auto mode.
+    TaisIntegrator(const TaisSettings& settings, std::array<std::string, kMapKinds> mapPointers);
+
+    std::string name() const override { return "tais"; }
+    nlohmann::json parameters() const override;
+    bool supportsMedia() const override { return true; }
+    // Resolves `auto` to the maps whose decisions the scene has; rejects a map asked for
+    // whose decision the scene lacks.
+    void prepare(const Scene& scene) override;
+    int bandRows() const override { return settings_.bandRows; }
+    BandResult renderBand(const Scene& scene, const Sampler& sampler, int y0, int y1, uint32_t spp,
+                          Film& film) const override;
+
+    const TaisSettings& settings() const { return settings_; }
+
+  private:
+    TaisSettings settings_;
+    std::array<std::string, kMapKinds> mapPointers_;
+    std::vector<char> invertible_;  // per scene light: can invert its samples
+};
+
+// The `tais` integrator from its config object (configs/README.md documents the keys).
+std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& json, const PathSettings& path);
+
+// Whether the scene makes the decision a map steers (no time map without motion blur, …).
+bool sceneHasDecision(const Scene& scene, MapKind kind);
+
+}  // namespace rr::tais
