@@ -31,6 +31,9 @@ NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]+")
 # The harness sets these per render; `set` may not.
 HARNESS_OWNED = ("/integrator", "/render/spp", "/render/seed", "/render/resolution")
 ABSENT = object()  # a missing key, as opposed to a JSON null
+# `"table": {"seconds": "matched"}`: the equal-time rows at each fixed-spp technique's
+# measured render time for the table's spp.
+MATCHED = "matched"
 
 
 @dataclass
@@ -42,9 +45,11 @@ class Profile:
     seeds: int
     reference_spp: int
     table_spp: int
-    table_seconds: float | None
+    table_seconds: float | str | None  # a seconds budget, MATCHED or None
     threads_per_job: int
     crop: tuple | None
+    # spp budgets at which each fixed-spp technique's render time becomes an equal-time budget
+    matched_spp: list = field(default_factory=list)
 
 
 @dataclass
@@ -52,6 +57,7 @@ class Technique:
     name: str
     label: str
     integrator: dict
+    fixed_spp: bool = False  # renders a fixed spp and cannot honour --time-limit
 
 
 @dataclass
@@ -160,6 +166,14 @@ class _Reader:
             self.fail("expected a positive finite number", key)
         return float(v)
 
+    def boolean(self, key, default):
+        v = self.raw(key, False, ABSENT)
+        if v is ABSENT:
+            return default
+        if not isinstance(v, bool):
+            self.fail("expected true or false", key)
+        return v
+
     def fraction(self, key, upper, default):
         v = self.raw(key, False, ABSENT)
         if v is ABSENT:
@@ -229,6 +243,12 @@ def load(file):
     )
     if exp.baseline not in exp.techniques:
         r.fail("must name one of the techniques", "baseline")
+    if not any(t.fixed_spp for t in exp.techniques.values()):
+        for profile in exp.profiles.values():
+            if profile.matched_spp:
+                raise ConfigError(file, f"/profiles/{profile.name}/matched_spp",
+                                  "needs a technique with \"fixed_spp\": true (the budgets "
+                                  "are the render times of such techniques)")
     if r.has("paper"):
         exp.paper = _paper(r, exp)
     if r.has("thresholds"):
@@ -277,7 +297,7 @@ def _techniques(r):
             t.fail("technique names use only letters, digits, '_' and '-'", name)
         tr = t.child(name)
         out[name] = Technique(name, tr.string("label", required=False, default=name),
-                              _integrator(tr, "integrator"))
+                              _integrator(tr, "integrator"), tr.boolean("fixed_spp", False))
         tr.finish()
     t.finish()
     return out
@@ -327,13 +347,32 @@ def _profile(p, name):
     reference_spp = p.integer("reference_spp", 2)
     if reference_spp % 2:
         p.fail("must be even (the reference is two independent halves)", "reference_spp")
+    matched_spp = p.raw("matched_spp", required=False, default=ABSENT)
+    if matched_spp is ABSENT:
+        matched_spp = []
+    elif not (isinstance(matched_spp, list) and matched_spp
+              and all(isinstance(v, int) and not isinstance(v, bool) for v in matched_spp)
+              and _strictly_increasing(matched_spp)):
+        p.fail("expected a strictly increasing, non-empty list of the profile's spp budgets",
+               "matched_spp")
+    for i, v in enumerate(matched_spp):
+        if v not in spp:
+            p.fail("must be one of the profile's spp budgets", f"matched_spp/{i}")
     table = p.child("table")
     table_spp = table.integer("spp", 1)
     if table_spp not in spp:
         table.fail("must be one of the profile's spp budgets", "spp")
-    table_seconds = table.positive("seconds", required=False)
-    if table_seconds is not None and table_seconds not in seconds:
-        table.fail("must be one of the profile's seconds budgets", "seconds")
+    table_seconds = table.raw("seconds", required=False, default=ABSENT)
+    if table_seconds is ABSENT:
+        table_seconds = None
+    elif table_seconds == MATCHED:
+        if table_spp not in matched_spp:
+            table.fail(f"\"{MATCHED}\" needs the table's spp ({table_spp}) in the profile's "
+                       "matched_spp", "seconds")
+    elif not (_is_positive_number(table_seconds) and table_seconds in seconds):
+        table.fail(f"must be one of the profile's seconds budgets or \"{MATCHED}\"", "seconds")
+    else:
+        table_seconds = float(table_seconds)
     table.finish()
     crop = p.raw("crop", required=False)
     if crop is not None:
@@ -345,7 +384,8 @@ def _profile(p, name):
             p.fail("expected [x, y, width, height] inside the image", "crop")
         crop = tuple(crop)
     profile = Profile(name, tuple(res), spp, [float(s) for s in seconds], seeds, reference_spp,
-                      table_spp, table_seconds, p.integer("threads_per_job", 1, False, 1), crop)
+                      table_spp, table_seconds, p.integer("threads_per_job", 1, False, 1), crop,
+                      matched_spp)
     p.finish()
     return profile
 

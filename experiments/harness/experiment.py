@@ -2,8 +2,15 @@
 parallel, measure each against the reference, summarise over seeds, fit convergence slopes.
 
 Equal-sample budgets are deterministic (bit-identical pixels for a seed); equal-time budgets
-depend on the machine's speed, so CI thresholds only ever use equal-sample budgets."""
+depend on the machine's speed, so CI thresholds only ever use equal-sample budgets.
+
+A fixed-spp technique (one that cannot honour --time-limit) has no equal-time runs of its
+own. With a profile's matched_spp, its measured render time at each of those spp becomes an
+equal-time budget: once the first phase (every equal-sample and equal-time run) is done, a
+second phase renders every time-capable technique with that time limit, and the fixed-spp
+technique's runs at that spp are entered again as equal-time records at that budget."""
 import datetime
+import math
 import shutil
 import sys
 import tempfile
@@ -30,15 +37,73 @@ class Run:
 def expand(exp, profile, only=None):
     """Every run of the profile, or only those whose (technique, kind, budget) is in `only`.
     Interleaved (seed, then budget, then technique innermost) so that the techniques share
-    the machine's load pattern: consecutive runs of one budget differ only in technique."""
+    the machine's load pattern: consecutive runs of one budget differ only in technique.
+    Fixed-spp techniques have no equal-time runs (see matched_runs)."""
     budgets = [("spp", s) for s in profile.spp] + [("time", s) for s in profile.seconds]
     runs = []
     for seed in range(profile.seeds):
         for kind, budget in budgets:
-            for technique in exp.techniques:
-                if only is None or (technique, kind, budget) in only:
-                    runs.append(Run(technique, kind, budget, seed))
+            for name, technique in exp.techniques.items():
+                if kind == "time" and technique.fixed_spp:
+                    continue
+                if only is None or (name, kind, budget) in only:
+                    runs.append(Run(name, kind, budget, seed))
     return runs
+
+
+def matched_seconds(times):
+    """The equal-time budget matched to render times over seeds: their mean, to 1 ms, at
+    least 1 ms (the renderer takes a time limit of 0 as none)."""
+    return max(round(math.fsum(times) / len(times), 3), 0.001)
+
+
+def matched_budgets(exp, profile, records):
+    """[{"technique", "spp", "seconds"}]: for each fixed-spp technique and each of the
+    profile's matched_spp, the equal-time budget of its measured render times at that spp."""
+    matched = []
+    for name, technique in exp.techniques.items():
+        if not technique.fixed_spp:
+            continue
+        spp_of = {}
+        for spp in profile.matched_spp:
+            times = [r["time"] for r in records
+                     if r["technique"] == name and r["kind"] == "spp" and r["budget"] == spp]
+            if not times:
+                raise HarnessFailure(f"{exp.id}: no {spp}-spp runs of {name} to match time to")
+            seconds = matched_seconds(times)
+            if seconds in spp_of:
+                raise HarnessFailure(
+                    f"{exp.id}: {name} took {seconds:g} s (to 1 ms) at both {spp_of[seconds]} "
+                    f"and {spp} spp, so the two equal-time budgets would be one; render larger "
+                    "images or drop one of matched_spp")
+            spp_of[seconds] = spp
+            matched.append({"technique": name, "spp": spp, "seconds": seconds})
+    return matched
+
+
+def matched_runs(exp, profile, matched, records):
+    """The runs of every time-capable technique at the matched budgets, every seed, except
+    those `records` already hold (a matched time equal to one of the profile's seconds
+    budgets is the same budget). Interleaved as in expand."""
+    done = {(r["technique"], r["kind"], r["budget"]) for r in records}
+    budgets = sorted({m["seconds"] for m in matched})
+    runs = []
+    for seed in range(profile.seeds):
+        for budget in budgets:
+            for name, technique in exp.techniques.items():
+                if not technique.fixed_spp and (name, "time", budget) not in done:
+                    runs.append(Run(name, "time", budget, seed))
+    return runs
+
+
+def matched_duplicates(matched, records):
+    """Each fixed-spp technique's records at a matched spp entered again as equal-time records
+    at the matched seconds (the same renders, files and metrics), so that summaries and gains
+    at equal time need nothing special. "duplicate_of" marks them for slopes and plots."""
+    return [{**r, "kind": "time", "budget": m["seconds"],
+             "duplicate_of": {"kind": "spp", "budget": m["spp"]}}
+            for m in matched for r in records
+            if r["technique"] == m["technique"] and r["kind"] == "spp" and r["budget"] == m["spp"]]
 
 
 def parallel_jobs(profile, requested):
@@ -54,8 +119,11 @@ def _estimated_cost(run, profile):
     return run.budget * profile.resolution[0] * profile.resolution[1] * 1e-6 + 0.3
 
 
-def execute(exp, profile, runs, out_dir, reference_file, workers):
+def execute(exp, profile, runs, out_dir, reference_file, workers, phase=None):
     """Renders and measures every run; returns one record per run, in run order."""
+    for run in runs:
+        if run.kind == "time" and exp.techniques[run.technique].fixed_spp:
+            raise ValueError(f"{run.technique} renders a fixed spp; it takes no time limit")
 
     def job(run):
         def work():
@@ -78,8 +146,8 @@ def execute(exp, profile, runs, out_dir, reference_file, workers):
         return work
 
     costs = [_estimated_cost(r, profile) for r in runs]
-    return jobs.run_parallel(f"{exp.id} {profile.name}", [job(r) for r in runs], costs,
-                             parallel_jobs(profile, workers))
+    label = f"{exp.id} {profile.name}" + (f" {phase}" if phase else "")
+    return jobs.run_parallel(label, [job(r) for r in runs], costs, parallel_jobs(profile, workers))
 
 
 def _groups(records):
@@ -136,7 +204,8 @@ def _gain(base_group, group, metric):
 
 def summarise(exp, records):
     """Per (technique, budget): each metric's mean and 95 % interval over seeds, the spp and
-    time reached, and the gain over the baseline at the same budget."""
+    time reached, and the gain over the baseline at the same budget. Duplicated records (see
+    matched_duplicates) make a fixed-spp technique's entry at a matched time budget."""
     groups = _groups(records)
     summary = []
     for (technique, kind, budget), group in groups.items():
@@ -150,17 +219,20 @@ def summarise(exp, records):
         base_group = groups.get((exp.baseline, kind, budget))
         if technique != exp.baseline and base_group:
             entry["gain"] = {m: _gain(base_group, group, m) for m in exp.metrics}
+        if "duplicate_of" in group[0]:
+            entry["duplicate_of"] = group[0]["duplicate_of"]
         summary.append(entry)
     return summary
 
 
 def slopes(exp, records, scratch_dir):
     """Least-squares slope of log(primary error) against log(spp) and log(time), over every
-    run of each technique (all seeds and budgets), from `metrics slope`."""
+    run of each technique (all seeds and budgets), from `metrics slope`. A render entered
+    twice (matched_duplicates) counts once."""
     out = {}
     for technique in exp.techniques:
         points = [{"spp": r["spp"], "time": r["time"], "error": r["metrics"][exp.primary_metric]}
-                  for r in records if r["technique"] == technique]
+                  for r in records if r["technique"] == technique and "duplicate_of" not in r]
         if len({p["spp"] for p in points}) >= 2 and all(p["error"] and p["error"] > 0
                                                          for p in points):
             out[technique] = renders.slope(points, Path(scratch_dir) / f"{technique}.json")
@@ -179,8 +251,14 @@ def run(exp, profile_name, workers):
     started = time.monotonic()
     out_dir = paths.RENDERS / profile.name / exp.id
     shutil.rmtree(out_dir, ignore_errors=True)
-    runs = expand(exp, profile)
-    records = execute(exp, profile, runs, out_dir, reference_file, workers)
+    records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
+    matched = matched_budgets(exp, profile, records)
+    if matched:
+        runs = matched_runs(exp, profile, matched, records)
+        if runs:
+            records += execute(exp, profile, runs, out_dir, reference_file, workers,
+                               phase="matched time")
+        records += matched_duplicates(matched, records)
     ratio = references.check_noise(exp, profile, entry, smallest_rmse(records))
     with tempfile.TemporaryDirectory() as scratch:
         fitted = slopes(exp, records, scratch)
@@ -191,15 +269,18 @@ def run(exp, profile_name, workers):
         "config": {"file": paths.relative(exp.file), "sha256": exp.config_sha256},
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
-        "techniques": {t.name: {"label": t.label, "integrator": t.integrator}
+        "techniques": {t.name: {"label": t.label, "integrator": t.integrator,
+                                "fixed_spp": t.fixed_spp}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
         "metrics": exp.metrics,
         "relmse_reject": exp.relmse_reject,
         "resolution": list(profile.resolution),
         "seeds": list(range(profile.seeds)),
-        "budgets": {"spp": profile.spp, "seconds": profile.seconds},
+        "budgets": {"spp": profile.spp, "seconds": profile.seconds,
+                    "matched_spp": profile.matched_spp},
         "table": {"spp": profile.table_spp, "seconds": profile.table_seconds},
+        "matched": matched,
         "crop": list(profile.crop) if profile.crop else None,
         "reference": {"file": paths.relative(reference_file), "sha256": entry["sha256"],
                       "integrator": entry["integrator"], "spp": entry["spp"],

@@ -1,6 +1,8 @@
 """Plots from results/<paper>/<figure>.json: log-log convergence (error against samples and
 against render time, one line per technique, 95 % seed intervals as bands, fitted slope in
-the legend) and side-by-side crops (reference | baseline | techniques) at the table budget."""
+the legend) and side-by-side crops (reference | baseline | techniques) at the table budget.
+A fixed-spp technique's points against time are its equal-sample runs at their mean render
+time."""
 import sys
 
 import matplotlib
@@ -13,11 +15,16 @@ from . import paths, tables  # noqa: E402
 
 
 def _series(doc, technique, kind):
-    """(x, mean, lo, hi) over a technique's budgets of one kind, x = mean spp or time."""
+    """(x, mean, lo, hi) over a technique's budgets of one kind, x = mean spp or time. Against
+    time, a fixed-spp technique's points are its equal-sample budgets (its equal-time entries
+    at matched budgets are copies of some of them)."""
     metric = doc["metrics"][0]
+    axis = "spp" if kind == "spp" else "time"
+    if kind == "time" and doc["techniques"][technique].get("fixed_spp", False):
+        kind = "spp"
     rows = sorted((s for s in doc["summary"] if s["technique"] == technique and s["kind"] == kind),
-                  key=lambda s: s["budget"])
-    x = np.array([s["spp" if kind == "spp" else "time"]["mean"] for s in rows])
+                  key=lambda s: s[axis]["mean"])
+    x = np.array([s[axis]["mean"] for s in rows])
     m = [s["metrics"][metric] for s in rows]
     return (x, np.array([e["mean"] for e in m]), np.array([e["ci95"][0] for e in m]),
             np.array([e["ci95"][1] for e in m]))
@@ -51,7 +58,7 @@ def _panel(ax, doc, kind):
 
 
 def convergence(doc, out):
-    has_time = bool(doc["budgets"]["seconds"])
+    has_time = any(s["kind"] == "time" for s in doc["summary"])
     fig, axes = plt.subplots(1, 2 if has_time else 1, figsize=(11 if has_time else 6, 4.2),
                              squeeze=False)
     _panel(axes[0][0], doc, "spp")

@@ -24,19 +24,43 @@ def load_results(profile_name):
     return by_paper
 
 
+def _fixed_spp(doc, technique):
+    return doc["techniques"][technique].get("fixed_spp", False)
+
+
+def _matched_to(doc, row):
+    """"tais at 16 spp" when the row's equal-time budget is a fixed-spp technique's measured
+    render time (several joined by ", "); "" otherwise."""
+    if row["kind"] != "time":
+        return ""
+    return ", ".join(f"{m['technique']} at {m['spp']} spp" for m in doc.get("matched", [])
+                     if m["seconds"] == row["budget"])
+
+
 def _rows(doc):
     """The table's rows: each technique (baseline first) at the equal-sample budget of the
     paper's number for the primary metric (else the table's), and, when the profile has one,
-    at the table's equal-time budget."""
+    at the table's equal-time budget (fixed-spp techniques have none). With "matched" as the
+    table's seconds, the equal-time rows follow the equal-sample ones: for each fixed-spp
+    technique, the time-capable techniques (baseline first) at its matched time for the
+    table's spp, then the technique itself at that time (its own renders at that spp)."""
     techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
     summary = {(s["technique"], s["kind"], s["budget"]): s for s in doc["summary"]}
     paper = _paper_entry(doc, doc["metrics"][0])
     spp = paper["spp"] if paper else doc["table"]["spp"]
+    seconds = doc["table"]["seconds"]
+    if seconds == "matched":
+        rows = [summary[(t, "spp", spp)] for t in techniques]
+        capable = [t for t in techniques if not _fixed_spp(doc, t)]
+        for m in doc["matched"]:
+            if m["spp"] == doc["table"]["spp"]:
+                rows += [summary[(t, "time", m["seconds"])] for t in capable + [m["technique"]]]
+        return rows
     rows = []
     for t in techniques:
         rows.append(summary[(t, "spp", spp)])
-        if doc["table"]["seconds"] is not None:
-            rows.append(summary[(t, "time", doc["table"]["seconds"])])
+        if seconds is not None and (t, "time", seconds) in summary:
+            rows.append(summary[(t, "time", seconds)])
     return rows
 
 
@@ -72,11 +96,13 @@ def _row_values(doc, row, metric=None):
     m = row["metrics"][metric]
     paper_value, paper_spp, paper_gain, verdict = _paper_cells(doc, row, metric)
     gain = _gain_estimate(row["gain"].get(metric))
+    budget = f"{row['budget']:g} {'spp' if row['kind'] == 'spp' else 's'}"
+    if _matched_to(doc, row):
+        budget += f" (time of {_matched_to(doc, row)})"
     return {
         "figure": doc["experiment"].split("/")[1],
         "technique": row["technique"],
-        "budget": (f"{row['budget']:g} spp" if row["kind"] == "spp"
-                   else f"{row['budget']:g} s"),
+        "budget": budget,
         "spp": row["spp"]["mean"],
         "time": row["time"]["mean"],
         "metric": metric,
@@ -164,6 +190,8 @@ def _experiment_notes(docs):
                          "this run; run it again.**")
         ref = doc["reference"]
         prov = doc["provenance"]
+        matched = "".join(f" Equal time matched to {m['technique']} at {m['spp']} spp: "
+                          f"{m['seconds']:g} s." for m in doc.get("matched", []))
         lines.append(
             f"- **{doc['experiment'].split('/')[1]}** ({doc['profile']} profile, "
             f"{doc['resolution'][0]}×{doc['resolution'][1]}, {len(doc['seeds'])} seeds, "
@@ -172,7 +200,7 @@ def _experiment_notes(docs):
             f"{' (uncommitted changes)' if prov['git_dirty'] else ''}): {doc['description']} "
             f"Reference: `{ref['integrator']['type']}`, {ref['spp']} spp, own noise σ/µ "
             f"{ref['noise_sigma_over_mu']:.2g} = {ref['noise_ratio_to_smallest_error']:.2f} of "
-            f"the smallest error measured.")
+            f"the smallest error measured.{matched}")
     return lines
 
 
@@ -183,7 +211,11 @@ def markdown(paper, docs):
              "better than the baseline (error ratio, or efficiency ratio for P-Eff) with a "
              "delta-method 95 % interval. Verdict: *reproduced* when our gain is within ×"
              f"{stats.REPRODUCED_FACTOR} of the paper's or the paper's lies in our interval, "
-             "else *weaker* / *stronger*; — where the paper reports no number.", ""]
+             "else *weaker* / *stronger*; — where the paper reports no number."
+             + (" A budget of \"T s (time of X at N spp)\" is X's mean render time at N spp: "
+                "X renders a fixed number of samples, so the other techniques are given its "
+                "time, and X's row there is its N-spp renders."
+                if any(doc.get("matched") for doc in docs) else ""), ""]
     lines += _main_table(docs)
     lines += ["", "## Other metrics", ""] + _secondary_table(docs)
     lines += ["", "## Convergence", "",
@@ -199,7 +231,8 @@ def csv_text(docs):
     w = csv.writer(out)
     w.writerow(["experiment", "profile", "technique", "budget_kind", "budget", "metric", "mean",
                 "ci95_lo", "ci95_hi", "sd", "seeds", "spp_mean", "time_mean", "gain",
-                "gain_ci95_lo", "gain_ci95_hi", "paper_value", "paper_gain", "verdict"])
+                "gain_ci95_lo", "gain_ci95_hi", "paper_value", "paper_gain", "verdict",
+                "matched_to"])
     for doc in docs:
         for s in doc["summary"]:
             for metric in doc["metrics"]:
@@ -212,7 +245,7 @@ def csv_text(docs):
                             *(g and [g["value"], *g["ci95"]] or [""] * 3),
                             "" if paper_value is None else paper_value,
                             "" if paper_gain is None else paper_gain,
-                            "" if verdict == "—" else verdict])
+                            "" if verdict == "—" else verdict, _matched_to(doc, s)])
     return out.getvalue()
 
 

@@ -16,6 +16,19 @@ class ValidConfigTest(unittest.TestCase):
         self.assertEqual(exp.paper[0].values["better"], 0.5)
         self.assertEqual(exp.thresholds.checks[0].min_gain, 2.0)
 
+    def test_fixed_spp_technique_with_matched_budgets(self):
+        doc = valid()
+        doc["techniques"]["better"]["fixed_spp"] = True
+        doc["profiles"]["quick"].update(matched_spp=[4, 16], table={"spp": 16,
+                                                                   "seconds": "matched"})
+        exp = load_config(doc)
+        self.assertTrue(exp.techniques["better"].fixed_spp)
+        self.assertFalse(exp.techniques["base"].fixed_spp)
+        self.assertEqual(exp.profiles["quick"].matched_spp, [4, 16])
+        self.assertEqual(exp.profiles["quick"].table_seconds, "matched")
+        self.assertEqual(exp.profiles["full"].matched_spp, [])
+        self.assertEqual(exp.profiles["full"].table_seconds, 0.5)
+
     def test_thresholds_and_paper_are_optional(self):
         doc = valid()
         del doc["thresholds"], doc["paper"]
@@ -103,9 +116,58 @@ class BadConfigTest(unittest.TestCase):
             (lambda d: d.update(relmse_reject=0.6), "/relmse_reject", "[0, 0.5)"),
             (lambda d: d["thresholds"]["checks"][0].update(max_error=0),
              "/thresholds/checks/0/max_error", "positive finite"),
+            (lambda d: d["techniques"]["better"].update(fixed_spp="yes"),
+             "/techniques/better/fixed_spp", "true or false"),
+            (lambda d: d["profiles"]["quick"]["table"].update(seconds=0.25),
+             "/profiles/quick/table/seconds", "seconds budgets or \"matched\""),
+            (lambda d: d["profiles"]["quick"]["table"].update(seconds="match"),
+             "/profiles/quick/table/seconds", "seconds budgets or \"matched\""),
         ]
         for change, pointer, fragment in cases:
             with self.subTest(pointer=pointer):
+                self.assertRejects(self.mutated(change), pointer, fragment)
+
+
+class MatchedConfigTest(unittest.TestCase):
+    """matched_spp and "seconds": "matched", on a config whose "better" is fixed-spp."""
+    assertRejects = BadConfigTest.assertRejects
+
+    def mutated(self, change):
+        doc = valid()
+        doc["techniques"]["better"]["fixed_spp"] = True
+        change(doc)
+        return doc
+
+    def test_impossible_values(self):
+        quick = "/profiles/quick"
+        cases = [
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[8]),
+             f"{quick}/matched_spp/0", "one of the profile's spp budgets"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[4, 32]),
+             f"{quick}/matched_spp/1", "one of the profile's spp budgets"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=16), f"{quick}/matched_spp",
+             "list"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[]), f"{quick}/matched_spp",
+             "non-empty"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[16, 4]),
+             f"{quick}/matched_spp", "increasing"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=["16"]),
+             f"{quick}/matched_spp", "list"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[True]),
+             f"{quick}/matched_spp", "list"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=None), f"{quick}/matched_spp",
+             "list"),
+            (lambda d: d["profiles"]["quick"]["table"].update(seconds="matched"),
+             f"{quick}/table/seconds", "matched_spp"),
+            (lambda d: d["profiles"]["quick"].update(matched_spp=[4],
+                                                     table={"spp": 16, "seconds": "matched"}),
+             f"{quick}/table/seconds", "the table's spp (16)"),
+            (lambda d: (d["techniques"]["better"].pop("fixed_spp"),
+                        d["profiles"]["full"].update(matched_spp=[16])),
+             "/profiles/full/matched_spp", "\"fixed_spp\": true"),
+        ]
+        for change, pointer, fragment in cases:
+            with self.subTest(pointer=pointer, fragment=fragment):
                 self.assertRejects(self.mutated(change), pointer, fragment)
 
 

@@ -1,0 +1,293 @@
+"""Fixed-spp techniques and equal time matched to their render times: the budgets, the
+second phase of runs, the duplicated records (summarised with gains, counted once by slopes),
+then a small run end to end with the real renderer, `path_mis` standing in for a fixed-spp
+technique, through summary, slopes, tables and plots."""
+import contextlib
+import csv
+import io
+import json
+import tempfile
+import unittest
+from pathlib import Path
+from unittest import mock
+
+from fixtures import load_config, summary_entry, valid
+from harness import experiment, jobs, paths, references, stats, tables, thresholds
+from harness.errors import HarnessFailure
+
+SEEDS = range(5)
+
+
+def fixed_config(**profile):
+    """The fixture config with "better" fixed-spp, matched at 4 and 16 spp."""
+    doc = valid()
+    doc["techniques"]["better"]["fixed_spp"] = True
+    doc["profiles"]["quick"].update(matched_spp=[4, 16], **profile)
+    return load_config(doc)
+
+
+def record(technique, kind, budget, seed, time, error):
+    return {"technique": technique, "kind": kind, "budget": budget, "seed": seed,
+            "spp": budget if kind == "spp" else 7, "time": time,
+            "file": f"renders/{technique}/{budget}_seed{seed}.exr",
+            "metrics": {"sigma_over_mu": error, "tvi_err": error, "rmse": error}}
+
+
+def fixed_records(times4, times16):
+    """The first phase: both techniques at 4 and 16 spp, the baseline at 0.5 s."""
+    out = []
+    for seed in SEEDS:
+        out += [record("base", "spp", 4, seed, 0.002, 1.0 + 0.01 * seed),
+                record("better", "spp", 4, seed, times4[seed], 0.5 + 0.01 * seed),
+                record("base", "spp", 16, seed, 0.008, 0.5 + 0.01 * seed),
+                record("better", "spp", 16, seed, times16[seed], 0.2 + 0.01 * seed),
+                record("base", "time", 0.5, seed, 0.5, 0.1 + 0.01 * seed)]
+    return out
+
+
+class MatchedBudgetsTest(unittest.TestCase):
+    def test_fixed_spp_techniques_get_no_time_limit(self):
+        exp = fixed_config()
+        runs = experiment.expand(exp, exp.profiles["quick"])
+        self.assertEqual(len(runs), 5 * (2 * 2 + 1))  # seeds x (2 spp x 2 techniques + base)
+        self.assertEqual({(r.technique, r.budget) for r in runs if r.kind == "time"},
+                         {("base", 0.5)})
+        with self.assertRaises(ValueError):
+            experiment.execute(exp, exp.profiles["quick"],
+                               [experiment.Run("better", "time", 0.5, 0)], Path("unused"),
+                               Path("unused"), 1)
+
+    def test_mean_time_over_seeds_to_one_millisecond_never_zero(self):
+        exp = fixed_config()
+        records = fixed_records([1e-5] * 5, [0.0101, 0.0119, 0.011, 0.0112, 0.0108])
+        self.assertEqual(experiment.matched_budgets(exp, exp.profiles["quick"], records),
+                         [{"technique": "better", "spp": 4, "seconds": 0.001},
+                          {"technique": "better", "spp": 16, "seconds": 0.011}])
+        self.assertEqual(experiment.matched_seconds([0.01234, 0.01236]), 0.012)
+
+    def test_second_phase_renders_the_time_capable_techniques_interleaved(self):
+        exp = fixed_config()
+        records = fixed_records([0.003] * 5, [0.011] * 5)
+        matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
+        runs = experiment.matched_runs(exp, exp.profiles["quick"], matched, records)
+        self.assertEqual([(r.technique, r.kind, r.budget, r.seed) for r in runs],
+                         [("base", "time", t, seed) for seed in SEEDS for t in (0.003, 0.011)])
+
+    def test_a_matched_time_equal_to_a_seconds_budget_reuses_its_runs(self):
+        exp = fixed_config()
+        records = fixed_records([0.003] * 5, [0.5002] * 5)
+        matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
+        self.assertEqual(matched[1]["seconds"], 0.5)
+        runs = experiment.matched_runs(exp, exp.profiles["quick"], matched, records)
+        self.assertEqual({r.budget for r in runs}, {0.003})
+
+    def test_two_spp_of_one_technique_with_the_same_time_are_refused(self):
+        exp = fixed_config()
+        with self.assertRaises(HarnessFailure) as caught:
+            experiment.matched_budgets(exp, exp.profiles["quick"],
+                                       fixed_records([0.0104] * 5, [0.0096] * 5))
+        self.assertIn("at both 4 and 16 spp", str(caught.exception))
+
+    def test_duplicates_are_summarised_with_a_gain_and_counted_once_by_slopes(self):
+        exp = fixed_config()
+        records = fixed_records([0.003] * 5, [0.011] * 5)
+        matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
+        records += [record("base", "time", m["seconds"], seed, m["seconds"], 0.4 + 0.01 * seed)
+                    for seed in SEEDS for m in matched]
+        duplicates = experiment.matched_duplicates(matched, records)
+        self.assertEqual(len(duplicates), 2 * 5)
+        originals = [r for r in records if r["technique"] == "better" and r["budget"] == 16]
+        copies = [r for r in duplicates if r["budget"] == 0.011]
+        for original, copy in zip(originals, copies):
+            self.assertEqual(copy, {**original, "kind": "time", "budget": 0.011,
+                                    "duplicate_of": {"kind": "spp", "budget": 16}})
+        summary = {(s["technique"], s["kind"], s["budget"]): s
+                   for s in experiment.summarise(exp, records + duplicates)}
+        at_time, at_spp = summary[("better", "time", 0.011)], summary[("better", "spp", 16)]
+        self.assertEqual(at_time["metrics"], at_spp["metrics"])
+        self.assertEqual(at_time["duplicate_of"], {"kind": "spp", "budget": 16})
+        # base 0.4..0.44 against better 0.2..0.24 at 0.011 s: gain 0.42 / 0.22
+        self.assertAlmostEqual(at_time["gain"]["sigma_over_mu"]["value"], 0.42 / 0.22)
+        # Each technique's fit gets its points' count instead of a `metrics slope` call.
+        with mock.patch.object(experiment.renders, "slope", lambda points, _: len(points)):
+            counted = experiment.slopes(exp, records + duplicates, "unused")
+            self.assertEqual(counted, experiment.slopes(exp, records, "unused"))
+        self.assertEqual(counted["better"], 2 * 5)
+
+
+def _time_entry(technique, budget, values, gain=None, duplicate_of=None):
+    e = summary_entry(technique, "time", budget, values, gain)
+    if duplicate_of:
+        e["duplicate_of"] = duplicate_of
+    return e
+
+
+class MatchedTablesTest(unittest.TestCase):
+    def document(self, seconds):
+        base, better = [1.0, 1.1, 0.9, 1.05, 0.95], [0.2, 0.22, 0.18, 0.21, 0.19]
+        g = stats.gain(base, better, False).to_json()
+        return {
+            "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
+            "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
+            "techniques": {"base": {}, "better": {"fixed_spp": True}}, "baseline": "base",
+            "metrics": ["sigma_over_mu"], "resolution": [8, 8], "seeds": list(SEEDS),
+            "table": {"spp": 16, "seconds": seconds}, "paper": [],
+            "matched": [{"technique": "better", "spp": 16, "seconds": 0.012}],
+            "summary": [summary_entry("base", "spp", 16, base),
+                        summary_entry("better", "spp", 16, better, g),
+                        _time_entry("base", 0.5, base),
+                        _time_entry("base", 0.012, base),
+                        _time_entry("better", 0.012, better, g, {"kind": "spp", "budget": 16})],
+            "slopes": {},
+            "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
+                          "noise_sigma_over_mu": 0.01, "noise_ratio_to_smallest_error": 0.05},
+            "provenance": {"parallel_jobs": 2, "threads_per_job": 1, "git_commit": "abc",
+                           "git_dirty": False},
+        }
+
+    def rows(self, text):
+        return [line.split(" | ")[1:3] for line in text.split("## Other metrics")[0].splitlines()
+                if line.startswith("| fig5 |")]
+
+    def test_matched_rows_follow_the_equal_sample_rows(self):
+        text = tables.markdown("paper", [self.document("matched")])
+        matched = "0.012 s (time of better at 16 spp)"
+        self.assertEqual(self.rows(text), [["base", "16 spp"], ["better", "16 spp"],
+                                           ["base", matched], ["better", matched]])
+        row = [line for line in text.splitlines() if line.startswith("| fig5 | better | 0.012")]
+        self.assertIn("×5 [", row[0])
+        self.assertIn("Equal time matched to better at 16 spp: 0.012 s.", text)
+        self.assertIn(r"0.012 s (time of better at 16 spp)", tables.latex("paper", [
+            self.document("matched")]))
+
+    def test_a_seconds_budget_has_no_row_for_a_fixed_spp_technique(self):
+        text = tables.markdown("paper", [self.document(0.5)])
+        self.assertEqual(self.rows(text), [["base", "16 spp"], ["base", "0.5 s"],
+                                           ["better", "16 spp"]])
+
+    def test_csv_names_what_a_time_budget_was_matched_to(self):
+        rows = list(csv_rows(self.document("matched")))
+        self.assertEqual({(r["technique"], r["budget"], r["matched_to"]) for r in rows},
+                         {("base", "16", ""), ("better", "16", ""), ("base", "0.5", ""),
+                          ("base", "0.012", "better at 16 spp"),
+                          ("better", "0.012", "better at 16 spp")})
+
+
+def csv_rows(doc):
+    return csv.DictReader(io.StringIO(tables.csv_text([doc])))
+
+
+@unittest.skipUnless(paths.renderer_binary().exists() and paths.metrics_binary().exists(),
+                     "needs the renderer and metrics binaries (make build)")
+class MatchedRunTest(unittest.TestCase):
+    """A few seconds: 32×32 pixels, 2 and 8 spp, 5 seeds; `path_mis` is marked fixed-spp and
+    matched at 8 spp. No seconds budget: on a fast machine its renders could get so many
+    samples that the reference's noise check would refuse them; matched times scale with the
+    machine."""
+
+    @classmethod
+    def setUpClass(cls):
+        scratch = tempfile.TemporaryDirectory()
+        cls.addClassCleanup(scratch.cleanup)
+        root = Path(scratch.name)
+        for name, value in (("RESULTS", root / "results"), ("RENDERS", root / "renders"),
+                            ("REFERENCE", root / "reference"),
+                            ("MANIFEST", root / "reference" / "manifest.json")):
+            cls.addClassCleanup(setattr, paths, name, getattr(paths, name))
+            setattr(paths, name, value)
+        doc = {
+            "description": "Matched equal time, end to end.",
+            "scene": "configs/scenes/cornell_spheres.json",
+            "set": {"/render/sampler": "independent"},
+            "techniques": {"path": {"integrator": {"type": "path"}},
+                           "path_mis": {"integrator": {"type": "path_mis"}, "fixed_spp": True}},
+            "baseline": "path",
+            "metrics": ["sigma_over_mu", "p_eff"],
+            "reference": {"integrator": {"type": "path_mis"}},
+            "profiles": {name: {"resolution": [32, 32], "spp": [2, 8], "seconds": [],
+                                "matched_spp": [8], "seeds": 5, "reference_spp": 1024,
+                                "table": {"spp": 8, "seconds": "matched"}}
+                         for name in ("quick", "full")},
+        }
+        cls.exp = load_config(doc)
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            references.ensure([cls.exp], "quick")
+            out = experiment.run(cls.exp, "quick", jobs.default_jobs())
+        cls.doc = json.loads(out.read_text())
+        cls.runs = cls.doc["runs"]
+        cls.T = cls.doc["matched"][0]["seconds"]
+
+    def select(self, technique, kind, budget, copies=False):
+        return [r for r in self.runs if (r["technique"], r["kind"], r["budget"])
+                == (technique, kind, budget) and ("duplicate_of" in r) == copies]
+
+    def test_matched_time_is_the_fixed_techniques_mean_render_time(self):
+        times = [r["time"] for r in self.select("path_mis", "spp", 8)]
+        self.assertEqual(len(times), 5)
+        self.assertEqual(self.doc["matched"], [{"technique": "path_mis", "spp": 8,
+                                                "seconds": max(round(sum(times) / 5, 3), 0.001)}])
+        self.assertEqual(self.doc["budgets"]["matched_spp"], [8])
+        self.assertEqual(self.doc["table"], {"spp": 8, "seconds": "matched"})
+        self.assertTrue(self.doc["techniques"]["path_mis"]["fixed_spp"])
+
+    def test_the_baseline_is_rendered_with_the_matched_time_limit(self):
+        runs = self.select("path", "time", self.T)
+        self.assertEqual([r["seed"] for r in runs], list(SEEDS))
+        for r in runs:
+            self.assertTrue(r["file"].endswith(f"path/{self.T:.12g}s_seed{r['seed']}.exr"))
+            self.assertTrue((paths.ROOT / r["file"]).exists())
+            self.assertGreaterEqual(r["spp"], 1)
+        # the fixed-spp technique was never given a time limit
+        self.assertEqual([r for r in self.runs if r["technique"] == "path_mis"
+                          and r["kind"] == "time" and "duplicate_of" not in r], [])
+
+    def test_fixed_spp_records_are_entered_again_at_the_matched_time(self):
+        copies = self.select("path_mis", "time", self.T, copies=True)
+        originals = self.select("path_mis", "spp", 8)
+        self.assertEqual(len(copies), 5)
+        for original, copy in zip(originals, copies):
+            self.assertEqual(copy, {**original, "kind": "time", "budget": self.T,
+                                    "duplicate_of": {"kind": "spp", "budget": 8}})
+        summary = {(s["technique"], s["kind"], s["budget"]): s for s in self.doc["summary"]}
+        entry = summary[("path_mis", "time", self.T)]
+        self.assertEqual(entry["metrics"], summary[("path_mis", "spp", 8)]["metrics"])
+        self.assertIsNotNone(entry["gain"]["sigma_over_mu"])
+        self.assertIsNotNone(entry["gain"]["p_eff"])
+
+    def test_slopes_count_each_render_once(self):
+        self.assertEqual(self.doc["slopes"]["path_mis"]["vs_spp"]["n"], 2 * 5)
+        with tempfile.TemporaryDirectory() as scratch:
+            without_copies = experiment.slopes(
+                self.exp, [r for r in self.runs if "duplicate_of" not in r], scratch)
+        self.assertEqual(self.doc["slopes"], without_copies)
+
+    def test_tables_show_the_matched_rows(self):
+        text = tables.markdown("paper", [self.doc])
+        budget = f"{self.T:g} s (time of path_mis at 8 spp)"
+        rows = [line.split(" | ")[1:3] for line in text.split("## Other")[0].splitlines()
+                if line.startswith("| figure | path")]
+        self.assertEqual(rows, [["path", "8 spp"], ["path_mis", "8 spp"], ["path", budget],
+                                ["path_mis", budget]])
+        row = [line for line in text.splitlines() if f"| path_mis | {budget}" in line][0]
+        self.assertRegex(row, r"\| ×[0-9.]+ \[")
+        self.assertIn("time of path\\_mis at 8 spp", tables.latex("paper", [self.doc]))
+
+    def test_calibration_uses_equal_sample_budgets_only(self):
+        block = thresholds.calibrate(self.exp, self.doc, [8])
+        self.assertEqual([(c["technique"], c["spp"]) for c in block["checks"]],
+                         [("path", 8), ("path_mis", 8)])
+
+    def test_plots_draw_the_fixed_technique_against_time_from_its_spp_runs(self):
+        from harness import plots
+        x, mean, _, _ = plots._series(self.doc, "path_mis", "time")
+        spp_entries = sorted((s for s in self.doc["summary"] if s["technique"] == "path_mis"
+                              and s["kind"] == "spp"), key=lambda s: s["time"]["mean"])
+        self.assertEqual(list(x), [s["time"]["mean"] for s in spp_entries])
+        with tempfile.TemporaryDirectory() as scratch:
+            out = Path(scratch) / "convergence.png"
+            plots.convergence(self.doc, out)
+            self.assertTrue(out.exists())
+
+
+if __name__ == "__main__":
+    unittest.main()
