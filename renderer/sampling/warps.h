@@ -1,14 +1,27 @@
 // Warps from [0,1)² to geometric domains, each with its density. Directions are in a local
 // frame with +z as the axis (normal or cone axis). Every warp here has a χ² test.
+// Some have an inverse, `…ToSquare`, which gives back the u that the warp maps to a point (for
+// TAIS's importance maps over lights' sample coordinates); each has a round-trip test. The
+// results are clamped into [0,1)². Where a warp is not injective (the centre of the disk, the
+// axis of a sphere or cone, where the azimuth is lost) the inverse returns one of the preimages.
 #pragma once
 
 #include "math/vector.h"
 
 namespace rr {
 
+// The largest float below 1, and a point clamped into [0,1)², the warps' domain (inverses round
+// onto its edges and clamp back).
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+inline Vec2 clampToUnitSquare(Vec2 u) {
+    return {clamp(u.x, 0.0f, kOneMinusEpsilon), clamp(u.y, 0.0f, kOneMinusEpsilon)};
+}
+
 // Concentric map of the square to the unit disk (Shirley & Chiu 1997); area-preserving up to
 // the constant π, so the density on the disk is 1/π.
 Vec2 squareToUniformDisk(Vec2 u);
+// The inverse of squareToUniformDisk for a point of the unit disk.
+Vec2 uniformDiskToSquare(Vec2 p);
 inline float uniformDiskPdf() {
     return kInvPi;
 }
@@ -25,6 +38,8 @@ inline float uniformHemispherePdf(const Vec3& w) {
 }
 
 Vec3 squareToUniformSphere(Vec2 u);
+// The inverse of squareToUniformSphere for a unit direction: u = ((1 − z)/2, φ/(2π)).
+Vec2 uniformSphereToSquare(const Vec3& w);
 inline float uniformSpherePdf() {
     return 0.25f * kInvPi;
 }
@@ -33,6 +48,9 @@ inline float uniformSpherePdf() {
 // The cone is given by 1 − cos θmax, which stays accurate for the narrow cones of small,
 // distant sphere lights where cos θmax itself rounds to 1.
 Vec3 squareToUniformCone(Vec2 u, float oneMinusCosThetaMax);
+// The inverse of squareToUniformCone for a unit direction in the cone: u = ((1 − cos θ) /
+// (1 − cos θmax), φ/(2π)), with 1 − cos θ = sin² θ/(1 + cos θ) (accurate in narrow cones).
+Vec2 uniformConeToSquare(const Vec3& w, float oneMinusCosThetaMax);
 inline float uniformConePdf(float oneMinusCosThetaMax) {
     return 1.0f / (kTwoPi * oneMinusCosThetaMax);
 }

@@ -44,19 +44,25 @@ class Light {
     virtual Rgb escapedRadiance(const Vec3& /*w*/) const { return Rgb(0.0f); }
     // Solid-angle density with which sample() yields direction `w` (infinite lights).
     virtual float directionPdf(const Vec3& /*w*/) const { return 0; }
-    // Called once the scene is built, before power() is used: infinite lights need the
-    // bounding sphere of the scene for their shadow-ray targets and their power.
-    virtual void preprocess(const Vec3& /*sceneCenter*/, float /*sceneRadius*/) {}
-
-    // Whether invertSample() can map this light's samples back to their coordinates.
-    virtual bool canInvertSample() const { return false; }
-    // The coordinates u for which sample(reference, u, ...) yields the point `point` on this
+    // The inverse of sample(), for TAIS's point-on-light importance map, which lives on the
+    // coordinates u: the u for which sample(reference, u, …) yields the point `point` on this
     // light, seen in unit direction `direction` from `reference` (infinite lights: the
-    // direction alone). False when the light cannot invert its sampling.
+    // direction alone, `point` is ignored). False when the light cannot invert its sampling
+    // (delta lights, shapes whose sampling has no implemented inverse, moving shapes: see
+    // Shape::invertSampleDirection) or when no u yields the point (the light's density is zero
+    // there); TAIS then leaves that light's coordinates unwarped. Where sample() is not
+    // injective (a pole of a sphere, the seam of a lat-long map) one of the preimages.
     virtual bool invertSample(const Vec3& /*reference*/, const Vec3& /*direction*/,
                               const Vec3& /*point*/, Vec2* /*u*/) const {
         return false;
     }
+    // Called once the scene is built, before power() is used: infinite lights need the
+    // bounding sphere of the scene for their shadow-ray targets and their power.
+    virtual void preprocess(const Vec3& /*sceneCenter*/, float /*sceneRadius*/) {}
+
+    // Whether invertSample() can map this light's samples back to their coordinates (true
+    // for the lights that implement it; it may still refuse points of zero density).
+    virtual bool canInvertSample() const { return false; }
 
     // Index in the scene's light list; set by the scene.
     int index() const { return index_; }

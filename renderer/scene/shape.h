@@ -43,6 +43,17 @@ class Shape {
     virtual bool sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const;
     // Solid-angle density with which sampleDirection would produce `hit` from `reference`.
     virtual float directionPdf(const Vec3& reference, const SurfaceHit& hit) const;
+    // The inverse of sampleDirection: the u for which sampleDirection(reference, u, …) yields
+    // the point `point` of this shape. False by default: for shapes whose sampling has no
+    // implemented inverse (triangle meshes: area sampling would need the triangle the point
+    // lies on; polygons: Arvo's spherical-triangle sampling), and for moving shapes, whose
+    // samples depend on the time, which the inverse is not given (it would have to guess it).
+    virtual bool invertSampleDirection(const Vec3& /*reference*/, const Vec3& /*point*/,
+                                       Vec2* /*u*/) const {
+        return false;
+    }
+    // Whether invertSampleDirection is implemented for this shape (and it does not move).
+    virtual bool invertsSamples() const { return false; }
 
     void setMotion(const Vec3& translation) { motion_ = translation; }
     bool hasMotion() const { return !(motion_ == Vec3(0.0f)); }

@@ -24,6 +24,10 @@ float AreaLight::pdf(const Vec3& reference, const SurfaceHit& hit) const {
     return shape_->directionPdf(reference, hit);
 }
 
+bool AreaLight::invertSample(const Vec3& reference, const Vec3&, const Vec3& point, Vec2* u) const {
+    return shape_->invertSampleDirection(reference, point, u);
+}
+
 Rgb AreaLight::power() const {
     return radiance_ * (kPi * shape_->area() * (twoSided_ ? 2.0f : 1.0f));
 }

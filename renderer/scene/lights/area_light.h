@@ -13,6 +13,12 @@ class AreaLight final : public Light {
 
     bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
     float pdf(const Vec3& reference, const SurfaceHit& hit) const override;
+    // The shape's inverse (Shape::invertSampleDirection); `direction` is not needed: a point of
+    // the shape determines u. Given for any point of the shape, also one that does not emit
+    // towards the reference (one-sided lights seen from behind), for which sample() refuses u.
+    bool invertSample(const Vec3& reference, const Vec3& direction, const Vec3& point,
+                      Vec2* u) const override;
+    bool canInvertSample() const override { return shape_->invertsSamples(); }
     Rgb power() const override;
     bool isDelta() const override { return false; }
 

@@ -20,4 +20,10 @@ float ConstantEnvironment::directionPdf(const Vec3&) const {
     return uniformSpherePdf();
 }
 
+bool ConstantEnvironment::invertSample(const Vec3&, const Vec3& direction, const Vec3&,
+                                       Vec2* u) const {
+    *u = uniformSphereToSquare(direction);
+    return true;
+}
+
 }  // namespace rr

@@ -19,6 +19,10 @@ class ConstantEnvironment final : public Light {
     bool isInfinite() const override { return true; }
     Rgb escapedRadiance(const Vec3&) const override { return radiance_; }
     float directionPdf(const Vec3&) const override;
+    // The inverse of uniform sphere sampling at `direction`.
+    bool canInvertSample() const override { return true; }
+    bool invertSample(const Vec3& reference, const Vec3& direction, const Vec3& point,
+                      Vec2* u) const override;
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
 
   private:

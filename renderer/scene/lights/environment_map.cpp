@@ -91,4 +91,14 @@ float EnvironmentMap::directionPdf(const Vec3& w) const {
     return jacobian > 0 ? distribution_.pdf(st) / jacobian : 0.0f;
 }
 
+bool EnvironmentMap::invertSample(const Vec3&, const Vec3& direction, const Vec3&, Vec2* u) const {
+    // The frame is orthonormal: toLocal undoes toWorld (sample()'s normalisation only removes
+    // rounding). The image point is found exactly as directionPdf finds it, so invertSample
+    // succeeds exactly where the density of the direction is positive.
+    const Vec2 st = layout_->imagePoint(toWorld_.toLocal(direction));
+    if (!(layout_->jacobian(st) > 0) || !(distribution_.pdf(st) > 0)) return false;
+    *u = distribution_.invert(st);
+    return true;
+}
+
 }  // namespace rr

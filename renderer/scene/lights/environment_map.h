@@ -39,6 +39,14 @@ class EnvironmentMap final : public Light {
     bool isInfinite() const override { return true; }
     Rgb escapedRadiance(const Vec3& w) const override;
     float directionPdf(const Vec3& w) const override;
+    // sample() backwards: the direction into the map's frame, its image point (the layout's
+    // imagePoint), and the u that Distribution2D::sample maps there (Distribution2D::invert).
+    // False where the density is zero, as no u yields the direction there: the lat-long poles
+    // and the probe's rim (no solid angle), texels of zero weight (black ones, the probe's
+    // masked ones).
+    bool canInvertSample() const override { return true; }
+    bool invertSample(const Vec3& reference, const Vec3& direction, const Vec3& point,
+                      Vec2* u) const override;
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
 
     const EnvLayout& layout() const { return *layout_; }

@@ -109,4 +109,11 @@ ShapeSample Disk::sampleArea(Vec2 u) const {
     return s;
 }
 
+bool Disk::invertSampleDirection(const Vec3&, const Vec3& point, Vec2* u) const {
+    if (hasMotion()) return false;  // the sample's position depends on the time
+    const Vec3 local = frame_.toLocal(point - center_);
+    *u = uniformDiskToSquare({local.x / radius_, local.y / radius_});
+    return true;
+}
+
 }  // namespace rr

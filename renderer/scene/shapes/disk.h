@@ -14,6 +14,9 @@ class Disk final : public Shape {
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return kPi * radius_ * radius_; }
     ShapeSample sampleArea(Vec2 u) const override;
+    // Sampled by area (the default sampleDirection, concentric map): its inverse at the point.
+    bool invertSampleDirection(const Vec3& reference, const Vec3& point, Vec2* u) const override;
+    bool invertsSamples() const override { return !hasMotion(); }
 
     // Ray parameter of the hit with the disk displaced by `offset`, if within (tMin, tMax).
     bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& offset, float tMin,

@@ -1,5 +1,7 @@
 #include "scene/shapes/quad.h"
 
+#include "sampling/warps.h"
+
 namespace rr {
 
 Quad::Quad(const Vec3& corner, const Vec3& edgeU, const Vec3& edgeV)
@@ -45,6 +47,13 @@ ShapeSample Quad::sampleArea(Vec2 u) const {
     s.normal = normal_;
     s.errorScale = errorScale_;
     return s;
+}
+
+bool Quad::invertSampleDirection(const Vec3&, const Vec3& point, Vec2* u) const {
+    if (hasMotion()) return false;  // the sample's position depends on the time
+    const Vec3 local = point - corner_;
+    *u = clampToUnitSquare({dot(local, dualU_), dot(local, dualV_)});
+    return true;
 }
 
 }  // namespace rr

@@ -14,6 +14,9 @@ class Quad final : public Shape {
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
     float area() const override { return area_; }
     ShapeSample sampleArea(Vec2 u) const override;
+    // Sampled by area (the default sampleDirection): u = (s, t) of the point.
+    bool invertSampleDirection(const Vec3& reference, const Vec3& point, Vec2* u) const override;
+    bool invertsSamples() const override { return !hasMotion(); }
 
   private:
     Vec3 corner_, edgeU_, edgeV_, normal_;

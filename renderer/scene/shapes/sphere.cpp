@@ -128,7 +128,7 @@ bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSam
     const Vec3 toCenter = c - reference;
     const float dist2 = lengthSquared(toCenter);
     const float r2 = radius_ * radius_;
-    if (dist2 <= r2 * (1.0f + 1e-4f)) return Shape::sampleDirection(reference, u, time, out);
+    if (!samplesCone(dist2)) return Shape::sampleDirection(reference, u, time, out);
 
     // Uniform directions in the cone the sphere subtends; then the nearest intersection.
     const float dist = std::sqrt(dist2);
@@ -156,9 +156,26 @@ bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSam
 float Sphere::directionPdf(const Vec3& reference, const SurfaceHit& hit) const {
     const Vec3 c = centerAt(hit.time);
     const float dist2 = lengthSquared(c - reference);
-    const float r2 = radius_ * radius_;
-    if (dist2 <= r2 * (1.0f + 1e-4f)) return Shape::directionPdf(reference, hit);
-    return uniformConePdf(coneOneMinusCos(r2 / dist2));
+    if (!samplesCone(dist2)) return Shape::directionPdf(reference, hit);
+    return uniformConePdf(coneOneMinusCos(radius_ * radius_ / dist2));
+}
+
+bool Sphere::invertSampleDirection(const Vec3& reference, const Vec3& point, Vec2* u) const {
+    if (hasMotion()) return false;  // the cone and the sphere's points depend on the time
+    const Vec3 toCenter = center_ - reference;
+    const float dist2 = lengthSquared(toCenter);
+    if (!samplesCone(dist2)) {
+        // Shape::sampleDirection: sampleArea's normal is squareToUniformSphere(u).
+        *u = uniformSphereToSquare(normalize(point - center_));
+        return true;
+    }
+    const Vec3 d = point - reference;
+    const float dist = length(d);
+    if (!(dist > 0)) return false;
+    // The same cone and frame as sampleDirection.
+    const Frame frame(toCenter / std::sqrt(dist2));
+    *u = uniformConeToSquare(frame.toLocal(d / dist), coneOneMinusCos(radius_ * radius_ / dist2));
+    return true;
 }
 
 }  // namespace rr

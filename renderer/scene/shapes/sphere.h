@@ -27,6 +27,11 @@ class Sphere final : public Shape {
     bool sampleDirection(const Vec3& reference, Vec2 u, float time,
                          ShapeSample* out) const override;
     float directionPdf(const Vec3& reference, const SurfaceHit& hit) const override;
+    // From outside, the u of the point's direction in the cone (the point is used only through
+    // its direction: a point on the far side gives the u of the near one in front of it); from
+    // inside, the inverse of area sampling (uniform on the sphere) at the point's normal.
+    bool invertSampleDirection(const Vec3& reference, const Vec3& point, Vec2* u) const override;
+    bool invertsSamples() const override { return !hasMotion(); }
 
     Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
     float radius() const { return radius_; }
@@ -37,6 +42,10 @@ class Sphere final : public Shape {
                    float tMax, float* t) const;
 
   private:
+    // Whether sampleDirection samples the cone the sphere subtends from a reference point at
+    // squared distance `dist2` from the centre (outside it, with a margin), not by area.
+    bool samplesCone(float dist2) const { return dist2 > radius_ * radius_ * (1.0f + 1e-4f); }
+
     Vec3 center_;
     float radius_;
     float errorScale_;  // of centre + radius · normal
