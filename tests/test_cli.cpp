@@ -66,7 +66,8 @@ TEST(Cli, RenderWritesExrWithChannelsAndMetadataAndPngPreview) {
     EXPECT_NE(attribute(image, "renderer.overrides").find("/render/max_depth=5"),
               std::string::npos);
     EXPECT_EQ(attribute(image, "renderer.sceneFileSha256").size(), 64u);
-    EXPECT_EQ(attribute(image, "renderer.features"), "none");
+    // The default scene is static, pinhole and without media; its glass sphere bifurcates.
+    EXPECT_EQ(attribute(image, "renderer.features"), "bifurcation");
     for (const char* key : {"renderer.version", "renderer.scene", "renderer.sceneSha256",
                             "renderer.threads", "renderer.renderTime", "renderer.sampler"})
         EXPECT_TRUE(image.attributes.count(key)) << key;
