@@ -3,6 +3,7 @@ convergence slopes), CSV (every number) and LaTeX (the main table, booktabs)."""
 import csv
 import io
 import json
+import math
 import sys
 
 from . import config, paths, provenance, stats
@@ -172,6 +173,54 @@ def _slope_table(docs):
     return lines
 
 
+def _equivalent_baseline_spp(doc, error):
+    """Samples per pixel at which the baseline's fitted convergence line (log error against log
+    spp, over all its runs) reaches `error`; None without a fit."""
+    fit = doc["slopes"].get(doc["baseline"], {}).get("vs_spp")
+    if not fit or fit["slope"] >= 0 or not error or error <= 0:
+        return None
+    return math.exp((math.log(error) - fit["intercept"]) / fit["slope"])
+
+
+def _cost_table(docs):
+    """Per technique at the table's equal-sample budget: render time per sample relative to the
+    baseline's (same spp, same seeds), the equal-sample gain next to the equal-time one, and
+    how many samples the baseline needs for the technique's error (from its fitted line)."""
+    lines = ["| figure | technique | spp | time per sample / baseline's | gain, equal samples | "
+             "gain, equal time | baseline spp for this error (× this spp) |",
+             "|---|---|---|---|---|---|---|"]
+    metric = None
+    for doc in docs:
+        metric = doc["metrics"][0]
+        summary = {(s["technique"], s["kind"], s["budget"]): s for s in doc["summary"]}
+        paper = _paper_entry(doc, metric)
+        spp = paper["spp"] if paper else doc["table"]["spp"]
+        base = summary.get((doc["baseline"], "spp", spp))
+        if base is None:
+            continue
+        for t in doc["techniques"]:
+            row = summary.get((t, "spp", spp))
+            if t == doc["baseline"] or row is None:
+                continue
+            cost = row["time"]["mean"] / base["time"]["mean"]
+            timed = [s for s in doc["summary"] if s["technique"] == t and s["kind"] == "time"
+                     and s.get("duplicate_of", {}).get("budget") == spp]
+            equal_time = _gain_estimate(timed[0]["gain"].get(metric)) if timed else None
+            error = row["metrics"][metric]["mean"] if row["metrics"][metric] else None
+            n = _equivalent_baseline_spp(doc, error)
+            lines.append(f"| {doc['experiment'].split('/')[1]} | {t} | {spp} | ×{cost:.3g} | "
+                         f"{_gain_text(_gain_estimate(row['gain'].get(metric)))} | "
+                         f"{_gain_text(equal_time)} | "
+                         f"{'—' if n is None else f'{n:.4g} (×{n / spp:.3g})'} |")
+    return lines
+
+
+def _analysis(paper):
+    """The hand-written analysis of a paper's results, `results/<paper>/analysis.md`, if any."""
+    file = paths.RESULTS / paper / "analysis.md"
+    return file.read_text().rstrip("\n").split("\n") if file.exists() else []
+
+
 def config_changed(doc):
     """True when the experiment's config (thresholds aside) differs from the one that made
     these results, or is gone."""
@@ -222,7 +271,19 @@ def markdown(paper, docs):
               "Least-squares slope of log error against log samples and log render time over "
               "every run (all seeds and budgets), from `metrics slope`; plain Monte Carlo "
               "converges as −0.5.", ""] + _slope_table(docs)
+    if any(doc.get("matched") for doc in docs):
+        lines += ["", "## Cost and equivalent samples", "",
+                  "At each experiment's table budget. The baseline spp for the technique's error "
+                  "comes from the baseline's fitted line of log error against log spp (see "
+                  "Convergence); beyond the baseline's largest budget it is an extrapolation.",
+                  ""] + _cost_table(docs)
     lines += ["", "## Experiments", ""] + _experiment_notes(docs)
+    analysis = _analysis(paper)
+    if analysis:
+        lines += ["", "## Analysis", "",
+                  f"Written by hand (`results/{paper}/analysis.md`) from the results above; "
+                  "regenerating the tables keeps it, so re-read it when the numbers change.",
+                  ""] + analysis
     return "\n".join(lines) + "\n"
 
 

@@ -1,0 +1,214 @@
+// TAIS's decisions (techniques/tais/map_guide.h) sample exactly the densities they claim:
+//  - scatter direction, eq. (2): directions from α · map + (1 − α) · BSDF sampling fit the
+//    mixture density bsdfPdf() reports (χ²), and every sample's weight is f / that density;
+//  - bifurcation, eq. (2) over {reflect, transmit}: reflection is chosen with probability
+//    α q + (1 − α) F, and the sample's pdf says so;
+//  - light selection, eq. (2) over the lights: the chosen light's frequency matches the
+//    mixture pmf;
+// each with a negative control that must fail.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/materials/dielectric.h"
+#include "scene/materials/lambert.h"
+#include "support/chi2.h"
+#include "support/histograms.h"
+#include "support/scene_testing.h"
+#include "techniques/tais/map_guide.h"
+
+namespace rr::test {
+namespace {
+
+using tais::PixelMaps;
+using tais::TaisSettings;
+
+constexpr int kSamples = 200000;
+const Chi2Family kChi2(6);
+
+// A scene with three lights (for light selection); only its light list and selector are used.
+const LoadedScene& threeLights() {
+    static const LoadedScene scene = loadSceneText(R"({
+      "camera": { "type": "pinhole", "position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 40 },
+      "render": { "resolution": [8, 8] },
+      "shapes": [ { "type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": { "type": "lambert", "albedo": 0.5 } } ],
+      "lights": [ { "type": "point", "position": [0, 0, 2], "intensity": 1 },
+                  { "type": "point", "position": [1, 0, 2], "intensity": 1 },
+                  { "type": "point", "position": [0, 1, 2], "intensity": 1 } ]
+    })");
+    return scene;
+}
+
+TaisSettings settingsWith(tais::MapKind kind) {
+    TaisSettings s;
+    s.automatic = false;
+    s.enabled[static_cast<int>(kind)] = true;
+    s.scatterDirectionSize = 16;
+    return s;
+}
+
+// A scatter-direction map with most of its mass in a band of cells around one direction.
+PixelMaps directionMaps(const TaisSettings& s) {
+    PixelMaps maps = PixelMaps::uniform(s, 3);
+    const int n = s.scatterDirectionSize;
+    std::vector<double> w(size_t(n) * n, 0.05);
+    const Vec2 peak = tais::directionToMap(normalize(Vec3(0.5f, 0.2f, 0.8f)));
+    const int px = int(peak.x * n), py = int(peak.y * n);
+    for (int y = std::max(py - 1, 0); y <= std::min(py + 1, n - 1); ++y)
+        for (int x = std::max(px - 2, 0); x <= std::min(px + 2, n - 1); ++x)
+            w[size_t(y) * n + x] = 20;
+    maps.scatterDirection[0] = tais::InvertedMap2D::fromWeights(w, n, n);
+    return maps;
+}
+
+struct DirectionRun {
+    DirectionHistogram observed{12, 48, 0.0};  // the upper hemisphere; below: extra cell
+    bool weightsMatch = true;
+    std::string weightFailure;
+};
+
+// Samples the first non-specular bounce through the guide at a tilted shading frame.
+DirectionRun sampleDirections(const PixelMaps& maps, const TaisSettings& s, const Frame& frame,
+                              const Vec3& woLocal) {
+    const Scene& scene = *threeLights().scene;
+    const Lambert lambert(Rgb(0.8f));
+    const Sampler sampler(SamplerType::Independent, 7, 1);
+    const std::vector<char> invertible(3, 0);
+    const ShadingContext ctx{Vec2(0.5f, 0.5f), Vec3(0.0f)};
+    DirectionRun run;
+    for (int i = 0; i < kSamples; ++i) {
+        const PixelSample sample = sampler.at(uint32_t(i), 0);
+        tais::MapGuide guide(scene, sample, maps, s, invertible);
+        BsdfSample bs;
+        if (!guide.sampleBsdf(0, lambert, ctx, frame, woLocal, Rgb(0.0f), &bs)) {
+            run.observed.add(Vec3(0, 0, -1));  // below the surface: the extra cell
+            continue;
+        }
+        run.observed.add(bs.wi);
+        // The weight is f·cos / the mixture density at this bounce (a fresh guide: bounce 0).
+        tais::MapGuide fresh(scene, sample, maps, s, invertible);
+        const float pdf = fresh.bsdfPdf(0, lambert, ctx, frame, woLocal, bs.wi);
+        const Rgb expected = lambert.eval(ctx, woLocal, bs.wi) * (1.0f / pdf);
+        if (run.weightsMatch && (std::abs(bs.pdf - pdf) > 1e-4f * pdf ||
+                                 std::abs(bs.weight.g - expected.g) > 1e-4f * expected.g)) {
+            run.weightsMatch = false;
+            run.weightFailure = "pdf " + std::to_string(bs.pdf) + " vs " + std::to_string(pdf) +
+                                ", weight " + std::to_string(bs.weight.g) + " vs " +
+                                std::to_string(expected.g);
+        }
+    }
+    return run;
+}
+
+// The mixture density, in the local frame, as bsdfPdf() reports it.
+std::function<double(const Vec3&)> mixtureDensity(const PixelMaps& maps, const TaisSettings& s,
+                                                  const Frame& frame, const Vec3& woLocal) {
+    return [&maps, &s, frame, woLocal](const Vec3& wi) {
+        static const std::vector<char> invertible(3, 0);
+        const Sampler sampler(SamplerType::Independent, 0, 1);
+        const PixelSample sample = sampler.at(0, 0);
+        const tais::MapGuide guide(*threeLights().scene, sample, maps, s, invertible);
+        const Lambert lambert(Rgb(0.8f));
+        const ShadingContext ctx{Vec2(0.5f, 0.5f), Vec3(0.0f)};
+        return double(guide.bsdfPdf(0, lambert, ctx, frame, woLocal, wi));
+    };
+}
+
+TEST(TaisGuide, ScatterDirectionSamplesTheMixtureOfMapAndBsdf) {
+    const TaisSettings s = settingsWith(tais::MapKind::ScatterDirection);
+    const PixelMaps maps = directionMaps(s);
+    const Frame frame(normalize(Vec3(0.3f, -0.2f, 1.0f)));
+    const Vec3 wo = normalize(Vec3(0.2f, 0.1f, 1.0f));
+    const DirectionRun run = sampleDirections(maps, s, frame, wo);
+    EXPECT_TRUE(run.weightsMatch) << run.weightFailure;
+    // Map samples below the surface end the path (f = 0): the extra cell expects their share.
+    const auto pdf = mixtureDensity(maps, s, frame, wo);
+    std::vector<double> expected = run.observed.expected(pdf, kSamples);
+    double inside = 0;
+    for (size_t i = 0; i + 1 < expected.size(); ++i)
+        inside += expected[i];
+    expected.back() = kSamples - inside;
+    kChi2.expectFits(chi2GoodnessOfFit(run.observed.counts(), expected), "scatter direction");
+
+    // Negative control: the BSDF's density alone (α = 0) does not describe these samples.
+    TaisSettings standard = s;
+    standard.enabled[static_cast<int>(tais::MapKind::ScatterDirection)] = false;
+    const PixelMaps none = PixelMaps::uniform(standard, 3);
+    // Its in-hemisphere shape, scaled to the same total there, so that only the shape differs.
+    std::vector<double> wrong =
+        run.observed.expected(mixtureDensity(none, standard, frame, wo), inside);
+    wrong.back() = expected.back();
+    kChi2.expectRejects(chi2GoodnessOfFit(run.observed.counts(), wrong), "BSDF density alone");
+}
+
+TEST(TaisGuide, BifurcationChoosesReflectionWithTheMixedProbability) {
+    TaisSettings s = settingsWith(tais::MapKind::Bifurcation);
+    PixelMaps maps = PixelMaps::uniform(s, 3);
+    // Vertex 0: the map prefers reflection 9 : 1.
+    std::vector<double> w(size_t(2 * s.bifurcationVertices), 1.0);
+    w[size_t(tais::bifurcationCell(0, true))] = 9;
+    maps.bifurcation = tais::InvertedMap1D::fromWeights(w);
+    const Dielectric glass(1.5f, Rgb(1.0f), Rgb(1.0f));
+    const Vec3 wo = normalize(Vec3(0.1f, 0.0f, 1.0f));
+    const ShadingContext ctx{Vec2(0.5f, 0.5f), Vec3(0.0f)};
+    const float fresnel = glass.reflectProbability(wo);
+    const double expectedReflect = s.alpha * 0.9 + (1 - s.alpha) * fresnel;
+    const Sampler sampler(SamplerType::Independent, 3, 1);
+    const std::vector<char> invertible(3, 0);
+    double reflections = 0;
+    bool pdfsMatch = true;
+    for (int i = 0; i < kSamples; ++i) {
+        const PixelSample sample = sampler.at(uint32_t(i), 0);
+        tais::MapGuide guide(*threeLights().scene, sample, maps, s, invertible);
+        BsdfSample bs;
+        ASSERT_TRUE(guide.sampleBsdf(0, glass, ctx, Frame(), wo, Rgb(0.0f), &bs));
+        const bool reflected = (bs.lobe & kReflection) != 0;
+        reflections += reflected;
+        const double claimed = reflected ? expectedReflect : 1 - expectedReflect;
+        pdfsMatch = pdfsMatch && std::abs(bs.pdf - claimed) < 1e-5;
+        // The weight undoes the choice: F·R / P for reflection, (1 − F)·T/η² / (1 − P) else.
+        const double value = reflected ? fresnel : (1 - fresnel) / (1.5 * 1.5);
+        pdfsMatch = pdfsMatch && std::abs(bs.weight.r - value / claimed) < 1e-4 * value / claimed;
+    }
+    EXPECT_TRUE(pdfsMatch);
+    const std::vector<double> observed{reflections, kSamples - reflections};
+    kChi2.expectFits(
+        chi2GoodnessOfFit(observed, {kSamples * expectedReflect, kSamples * (1 - expectedReflect)}),
+        "bifurcation");
+    kChi2.expectRejects(chi2GoodnessOfFit(observed, {kSamples * fresnel, kSamples * (1 - fresnel)}),
+                        "Fresnel alone");
+}
+
+TEST(TaisGuide, LightSelectionMixesTheMapWithTheSelector) {
+    const TaisSettings s = settingsWith(tais::MapKind::LightSelection);
+    PixelMaps maps = PixelMaps::uniform(s, 3);
+    maps.lightSelection = tais::InvertedMap1D::fromWeights(std::vector<double>{1, 0.0001, 3});
+    const Scene& scene = *threeLights().scene;
+    const Sampler sampler(SamplerType::Independent, 5, 1);
+    const std::vector<char> invertible(3, 0);
+    const Vec3 reference(0.1f, 0.2f, 0.0f);
+    std::vector<double> observed(3, 0.0), expected(3), selectorOnly(3);
+    for (int i = 0; i < kSamples; ++i) {
+        const PixelSample sample = sampler.at(uint32_t(i), 0);
+        tais::MapGuide guide(scene, sample, maps, s, invertible);
+        LightSample ls;
+        float pdf;
+        const Light* light;
+        ASSERT_TRUE(guide.sampleLight(0, reference, 0, &ls, &pdf, &light));
+        observed[size_t(light->index())] += 1;
+        // Point lights: the pair's density is the selection probability alone.
+        const float claimed =
+            maps.lightSelection->probability(light->index()) * s.alpha + (1 - s.alpha) / 3.0f;
+        ASSERT_NEAR(pdf, claimed, 1e-6f);
+    }
+    for (int i = 0; i < 3; ++i) {
+        expected[size_t(i)] =
+            kSamples * (s.alpha * maps.lightSelection->probability(i) + (1 - s.alpha) / 3.0);
+        selectorOnly[size_t(i)] = kSamples / 3.0;
+    }
+    kChi2.expectFits(chi2GoodnessOfFit(observed, expected), "light selection");
+    kChi2.expectRejects(chi2GoodnessOfFit(observed, selectorOnly), "uniform selection alone");
+}
+
+}  // namespace
+}  // namespace rr::test
