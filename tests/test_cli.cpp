@@ -193,6 +193,20 @@ TEST(Cli, TimeLimitRecordsTheSamplesReached) {
     EXPECT_EQ(attribute(image, "renderer.timeLimit"), "0.5");
 }
 
+// TAIS scans pixels in order with a fixed spp: a time limit cannot stop it part-way.
+TEST(Cli, TaisRefusesATimeLimitAndWritesNothing) {
+    const fs::path dir = scratchDirectory();
+    std::string errors;
+    EXPECT_EQ(run({"render", kScene, "--resolution", "16x16", "--integrator", "tais",
+                   "--time-limit", "0.5", "--out", (dir / "t.exr").string()},
+                  dir, &errors),
+              2);
+    EXPECT_NE(errors.find("/integrator/type"), std::string::npos) << errors;
+    EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+    EXPECT_FALSE(fs::exists(dir / "t.exr"));
+    EXPECT_FALSE(fs::exists(dir / "t.png"));
+}
+
 TEST(Cli, InterruptSavesAValidImageOfTheSamplesReached) {
     const fs::path dir = scratchDirectory();
     const ChildProcess p = start({"render", kScene, "--resolution", "64x64", "--spp", "1000000",

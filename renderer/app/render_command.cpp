@@ -1,6 +1,7 @@
 #include "app/render_command.h"
 
 #include <pthread.h>
+#include <sys/resource.h>
 #include <tbb/info.h>
 #include <unistd.h>
 
@@ -143,6 +144,11 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p,
     a["renderer.sampler"] = std::string(samplerName(settings.sampler));
     a["renderer.threads"] = threads;
     a["renderer.renderTime"] = stats.seconds;
+    // The process's peak resident memory so far (scene, acceleration structure, film and the
+    // integrator's working memory such as TAIS's maps), in MiB.
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    a["renderer.peakMemoryMiB"] = double(usage.ru_maxrss) / 1024.0;
     a["renderer.features"] = featureList(p.loaded.scene->features());
     a["renderer.rays.camera"] = static_cast<double>(stats.rays.camera);
     a["renderer.rays.extension"] = static_cast<double>(stats.rays.extension);
