@@ -127,8 +127,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"tais_fig10_fog_spots.json", R"({"type":"tais","maps":"auto","credit":"path"})", 8,
              512, 8192},
         Case{"tais_fig11_env_glossy_plane.json", R"({"type":"tais","maps":"auto"})", 4, 64, 1024}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-        std::string name = info.param.scene;
+    [](const ::testing::TestParamInfo<Case>& param) {
+        std::string name = param.param.scene;
         return name.substr(0, name.find('.'));
     });
 

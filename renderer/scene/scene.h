@@ -46,6 +46,8 @@ class Scene {
     std::span<const Light* const> infiniteLights() const { return infiniteLights_; }
     const LightSelector& lightSelector() const { return *lightSelector_; }
     const SceneFeatures& features() const { return features_; }
+    // The materials of the scene's shapes.
+    std::span<const std::unique_ptr<Material>> materials() const { return materials_; }
     // The medium filling the scene outside the shapes that have an interior medium (nullptr:
     // vacuum). It fills all space, so it also attenuates infinite lights.
     const Medium* medium() const { return medium_; }

@@ -60,6 +60,24 @@ nlohmann::json TaisIntegrator::parameters() const {
             {"rr_depth", settings_.path.rrDepth}};
 }
 
+namespace {
+
+// Next-event estimation happens at surfaces with a diffuse or glossy lobe and in media.
+bool samplesLights(const Scene& scene) {
+    for (const auto& m : scene.materials())
+        if (m->hasNonSpecular()) return true;
+    return scene.features().media;
+}
+
+// The scatter-direction map steers surfaces whose material has no specular lobe.
+bool hasNonSpecularOnlySurfaces(const Scene& scene) {
+    for (const auto& m : scene.materials())
+        if (m->hasNonSpecular() && !(m->lobes() & kSpecular)) return true;
+    return false;
+}
+
+}  // namespace
+
 bool sceneHasDecision(const Scene& scene, MapKind kind) {
     const SceneFeatures& f = scene.features();
     switch (kind) {
@@ -72,13 +90,13 @@ bool sceneHasDecision(const Scene& scene, MapKind kind) {
         case MapKind::Bifurcation:
             return f.bifurcation;
         case MapKind::LightSelection:
-            return scene.lights().size() > 1;
+            return scene.lights().size() > 1 && samplesLights(scene);
         case MapKind::PointOnLight:
             for (const Light* light : scene.lights())
-                if (light->canInvertSample()) return true;
+                if (light->canInvertSample()) return samplesLights(scene);
             return false;
         case MapKind::ScatterDirection:
-            return true;
+            return hasNonSpecularOnlySurfaces(scene);
         case MapKind::Count:
             break;
     }
