@@ -1,5 +1,7 @@
 #include "techniques/tais/tais_integrator.h"
 
+#include <algorithm>
+
 #include "integrators/path_walk.h"
 #include "loader/config_error.h"
 #include "loader/json_reader.h"
@@ -56,6 +58,7 @@ nlohmann::json TaisIntegrator::parameters() const {
             {"credit", credits[static_cast<int>(settings_.credit)]},
             {"contribution_filter", settings_.contributionFilter},
             {"band_rows", settings_.bandRows},
+            {"band_warmup_rows", settings_.bandWarmupRows},
             {"max_depth", settings_.path.maxDepth},
             {"rr_depth", settings_.path.rrDepth}};
 }
@@ -130,12 +133,16 @@ BandIntegrator::BandResult TaisIntegrator::renderBand(const Scene& scene, const 
     std::vector<Rgb> values(spp);
     PixelMaps maps = PixelMaps::uniform(settings_, lights);
     BandResult result;
+    // Warm-up rows (from the band above) teach the maps and are not kept.
+    const int start = y0 - std::min(settings_.bandWarmupRows, y0);
     int row = 0;
-    for (const PixelCoord& p : serpentineOrder(width, y0, y1)) {
-        if (p.y - y0 != row) {
+    for (const PixelCoord& p : serpentineOrder(width, start, y1)) {
+        if (p.y - start != row) {
             rows.nextRow();
-            row = p.y - y0;
+            row = p.y - start;
         }
+        const bool warmup = p.y < y0;
+        const uint32_t firstSample = warmup ? spp : 0;
         // Fig. 3: the neighbours' average, normalised (which makes it independent of how many
         // were averaged) so that it and this pixel's own samples, normalised too, weigh
         // equally in what the pixel passes on.
@@ -144,7 +151,7 @@ BandIntegrator::BandResult TaisIntegrator::renderBand(const Scene& scene, const 
         temporary.clear();
         const uint32_t pixel = uint32_t(p.y) * uint32_t(width) + uint32_t(p.x);
         for (uint32_t s = 0; s < spp; ++s) {
-            const PixelSample sample = sampler.at(pixel, s);
+            const PixelSample sample = sampler.at(pixel, firstSample + s);
             Rgb v = scene.features().media
                         ? renderSample<true>(scene, sample, maps, settings_, invertible_, p.x, p.y,
                                              temporary, result.rays)
@@ -157,8 +164,9 @@ BandIntegrator::BandResult TaisIntegrator::renderBand(const Scene& scene, const 
             values[s] = v;
         }
         if (settings_.contributionFilter) filterMaximumContribution(values);  // line 21
-        for (const Rgb& v : values)
-            film.add(p.x, p.y, v);
+        if (!warmup)
+            for (const Rgb& v : values)
+                film.add(p.x, p.y, v);
         temporary.addFinishedTo(maps, settings_.worldFloorShare);  // lines 22–24
         rows.store(p.x, &maps);
     }
@@ -207,6 +215,7 @@ std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& j, const PathSettin
                    : Credit::Downstream;
     s.contributionFilter = j.getBool("contribution_filter", false);
     s.bandRows = size("band_rows", s.bandRows, 1, 1 << 20);
+    s.bandWarmupRows = size("band_warmup_rows", s.bandWarmupRows, 0, 1 << 20);
     return std::make_unique<TaisIntegrator>(s, std::move(pointers));
 }
 

@@ -12,7 +12,9 @@
 // bands of `bandRows` rows, each scanned on its own from uniform maps. Bands depend only on the
 // settings, never on the thread count, so the image is bit-identical for any number of threads;
 // the price is that each band's first rows learn from scratch (measured against one serial scan,
-// bandRows ≥ height, in results/tables/tais.md).
+// bandRows ≥ height, in results/tables/tais.md). With `bandWarmupRows` a band first scans that
+// many rows of the band above to learn its maps, with sample indices spp … 2 spp − 1 (independent
+// of the samples the image keeps) and discards their values.
 #pragma once
 
 #include <array>
