@@ -9,12 +9,12 @@
 // pixel renders, so each pixel's estimate is unbiased.
 //
 // Parallelism: the scan makes every pixel depend on the one before it, so the image is cut into
-// bands of `bandRows` rows, each scanned on its own from uniform maps. Bands depend only on the
-// settings, never on the thread count, so the image is bit-identical for any number of threads;
-// the price is that each band's first rows learn from scratch (measured against one serial scan,
-// bandRows ≥ height, in results/tables/tais.md). With `bandWarmupRows` a band first scans that
-// many rows of the band above to learn its maps, with sample indices spp … 2 spp − 1 (independent
-// of the samples the image keeps) and discards their values.
+// bands of `bandRows` rows. Bands depend only on the settings, never on the thread count, so the
+// image is bit-identical for any number of threads. A band that started from uniform maps would
+// learn from scratch in its first rows; instead it first scans `bandWarmupRows` (4 by default)
+// rows of the band above, with sample indices spp … 2 spp − 1 (independent of the samples the
+// image keeps), and discards their values. Both are measured against one serial scan (bandRows ≥
+// height) in results/tables/tais.md.
 #pragma once
 
 #include <array>

@@ -62,7 +62,7 @@ struct TaisSettings {
     Credit credit = Credit::Downstream;
     bool contributionFilter = false;  // eq. (4), biased: reported separately
     int bandRows = 32;                // rows scanned by one task (see tais_integrator.h)
-    int bandWarmupRows = 0;           // rows of the band above scanned first, samples discarded
+    int bandWarmupRows = 4;           // rows of the band above scanned first, samples discarded
 
     bool uses(MapKind kind) const { return enabled[static_cast<int>(kind)]; }
 };
