@@ -51,8 +51,7 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
     const Ray cameraRay = generateCameraRay(scene.camera(), x, y, sample);
     ++rays.camera;
     SurfaceHit hit;
-    if (!scene.intersect(cameraRay, &hit))
-        return escapedRadiance(scene, cameraRay.direction, cameraRay.origin, true, 0);
+    if (!scene.intersect(cameraRay, &hit)) return escapedRadiance(scene, cameraRay.direction);
 
     Rgb radiance(0.0f);
     if (const AreaLight* light = hit.shape->areaLight())

@@ -14,18 +14,4 @@ float emissionMisWeight(bool countInFull, float bsdfPdf, float lightPdf) {
     return countInFull ? 1.0f : powerHeuristic(1, bsdfPdf, 1, lightPdf);
 }
 
-Rgb escapedRadiance(const Scene& scene, const Vec3& w, const Vec3& reference, bool countInFull,
-                    float bsdfPdf) {
-    Rgb sum(0.0f);
-    for (const Light* light : scene.infiniteLights()) {
-        const Rgb le = light->escapedRadiance(w);
-        if (le.isBlack()) continue;
-        const float lightPdf =
-            countInFull ? 0.0f
-                        : scene.lightSelector().pmf(*light, reference) * light->directionPdf(w);
-        sum += le * emissionMisWeight(countInFull, bsdfPdf, lightPdf);
-    }
-    return sum;
-}
-
 }  // namespace rr

@@ -81,17 +81,32 @@ Ray generateCameraRay(const Camera& camera, int x, int y, const PixelSample& sam
 // the emission counts in full.
 float emissionMisWeight(bool countInFull, float bsdfPdf, float lightPdf);
 
-// Radiance of the infinite lights along a ray that escaped the scene in direction `w`,
-// MIS-weighted as emissionMisWeight() says; `reference` is where the ray started.
-Rgb escapedRadiance(const Scene& scene, const Vec3& w, const Vec3& reference, bool countInFull,
-                    float bsdfPdf);
-
 // Veach's power heuristic (β = 2) for strategy a with nA samples against strategy b.
 inline float powerHeuristic(float nA, float pdfA, float nB, float pdfB) {
     const float a = nA * pdfA, b = nB * pdfB;
     if (a == 0 || std::isinf(b)) return 0;
     const float r = b / a;  // overflow to infinity in r² correctly gives 0
     return 1.0f / (1.0f + r * r);
+}
+
+// Radiance of the infinite lights along a ray that escaped the scene in direction `w`, each
+// light MIS-weighted as emissionMisWeight() says, with `lightPdf(light)` the density with which
+// next-event estimation from the ray's origin would have chosen that light and direction.
+template <class LightPdf>
+Rgb escapedRadiance(const Scene& scene, const Vec3& w, bool countInFull, float bsdfPdf,
+                    const LightPdf& lightPdf) {
+    Rgb sum(0.0f);
+    for (const Light* light : scene.infiniteLights()) {
+        const Rgb le = light->escapedRadiance(w);
+        if (le.isBlack()) continue;
+        sum += le * emissionMisWeight(countInFull, bsdfPdf, countInFull ? 0.0f : lightPdf(*light));
+    }
+    return sum;
+}
+
+// The same counted in full (a camera ray, which no other strategy could have found).
+inline Rgb escapedRadiance(const Scene& scene, const Vec3& w) {
+    return escapedRadiance(scene, w, true, 0, [](const Light&) { return 0.0f; });
 }
 
 }  // namespace rr

@@ -118,8 +118,6 @@ class PathWalk {
     // Emission of the shape at `hit` times the throughput, MIS-weighted against next-event
     // estimation.
     Rgb emission(const SurfaceHit& hit) const;
-    // Radiance of the infinite lights for a ray escaping the scene, MIS-weighted likewise.
-    Rgb escaped() const;
     // Continues the ray through an index-matched boundary into the medium beyond.
     bool passThroughBoundary(const SurfaceHit& hit);
     // A surface vertex: next-event estimation and BSDF sampling. False when the path ends.
@@ -179,7 +177,12 @@ Rgb PathWalk<kMedia, Guide>::run() {
             }
         }
         if (!found) {
-            radiance_ += throughput_ * escaped();
+            radiance_ +=
+                throughput_ * escapedRadiance(scene_, ray_.direction, countEmission_, scatterPdf_,
+                                              [this](const Light& light) {
+                                                  return guide_.lightPdf(previousVertex(), light,
+                                                                         previous_, ray_.direction);
+                                              });
             break;
         }
         if (hit.shape->areaLight()) radiance_ += emission(hit);
@@ -218,20 +221,6 @@ Rgb PathWalk<kMedia, Guide>::emission(const SurfaceHit& hit) const {
     const float lightPdf =
         countEmission_ ? 0.0f : guide_.lightPdf(previousVertex(), *light, previous_, hit);
     return throughput_ * le * emissionMisWeight(countEmission_, scatterPdf_, lightPdf);
-}
-
-template <bool kMedia, class Guide>
-Rgb PathWalk<kMedia, Guide>::escaped() const {
-    const Vec3& w = ray_.direction;
-    Rgb sum(0.0f);
-    for (const Light* light : scene_.infiniteLights()) {
-        const Rgb le = light->escapedRadiance(w);
-        if (le.isBlack()) continue;
-        const float lightPdf =
-            countEmission_ ? 0.0f : guide_.lightPdf(previousVertex(), *light, previous_, w);
-        sum += le * emissionMisWeight(countEmission_, scatterPdf_, lightPdf);
-    }
-    return sum;
 }
 
 template <bool kMedia, class Guide>

@@ -31,11 +31,11 @@ void MapGuide::record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amoun
 
 Ray MapGuide::cameraRay(int x, int y, float* weight) {
     const Camera& camera = scene_.camera();
-    const Vec2 film = sample_.get2D(Decision::FilmPosition);
+    const Vec2 film = sample().get2D(Decision::FilmPosition);
     float w = 1;
     Vec2 lens(0.5f, 0.5f);
     if (camera.isThinLens()) {
-        lens = sample_.get2D(Decision::Lens);
+        lens = sample().get2D(Decision::Lens);
         if (maps_.lens) {
             float p;
             lens = maps_.lens->warp(lens, &p);
@@ -45,7 +45,7 @@ Ray MapGuide::cameraRay(int x, int y, float* weight) {
     }
     float time = 0;
     if (camera.hasShutterInterval()) {
-        time = sample_.get1D(Decision::Time);
+        time = sample().get1D(Decision::Time);
         if (maps_.time) {
             float p;
             time = maps_.time->warp(time, &p);
@@ -58,7 +58,7 @@ Ray MapGuide::cameraRay(int x, int y, float* weight) {
 }
 
 float MapGuide::flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf) {
-    const float u = sample_.get1D(Decision::MediumDistance, vertex);
+    const float u = sample().get1D(Decision::MediumDistance, vertex);
     if (vertex != 0 || !maps_.scatterDistance) {
         *warpPdf = 1;
         return u;
@@ -84,18 +84,11 @@ float MapGuide::pointOnLightPdf(const Light& light, const Vec3& reference, const
 
 bool MapGuide::sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
                            float* pdf, const Light** chosen) {
+    if (!guidesLights(vertex))
+        return standard_.sampleLight(vertex, reference, time, ls, pdf, chosen);
     const LightSelector& selector = scene_.lightSelector();
-    const float uSelect = sample_.get1D(Decision::LightSelect, vertex);
-    Vec2 uPoint = sample_.get2D(Decision::LightPoint, vertex);
-    if (!guidesLights(vertex)) {
-        float selectPmf;
-        const Light* light = selector.select(uSelect, reference, &selectPmf);
-        if (!light || !light->sample(reference, uPoint, time, ls)) return false;
-        *pdf = selectPmf * ls->pdf;
-        *chosen = light;
-        return true;
-    }
-
+    const float uSelect = sample().get1D(Decision::LightSelect, vertex);
+    Vec2 uPoint = sample().get2D(Decision::LightPoint, vertex);
     const Light* light;
     float selectPmf;
     if (maps_.lightSelection) {
@@ -133,18 +126,16 @@ void MapGuide::lightContribution(uint32_t vertex, const Rgb& contribution) {
 
 float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
                          const SurfaceHit& hit) const {
-    const float pointPdf = light.pdf(reference, hit);
-    if (!guidesLights(vertex)) return scene_.lightSelector().pmf(light, reference) * pointPdf;
+    if (!guidesLights(vertex)) return standard_.lightPdf(vertex, light, reference, hit);
     const Vec3 direction = normalize(hit.position - reference);
-    return selectionPmf(light, reference) * pointPdf *
+    return selectionPmf(light, reference) * light.pdf(reference, hit) *
            pointOnLightPdf(light, reference, direction, hit.position);
 }
 
 float MapGuide::lightPdf(uint32_t vertex, const Light& light, const Vec3& reference,
                          const Vec3& w) const {
-    const float directionPdf = light.directionPdf(w);
-    if (!guidesLights(vertex)) return scene_.lightSelector().pmf(light, reference) * directionPdf;
-    return selectionPmf(light, reference) * directionPdf *
+    if (!guidesLights(vertex)) return standard_.lightPdf(vertex, light, reference, w);
+    return selectionPmf(light, reference) * light.directionPdf(w) *
            pointOnLightPdf(light, reference, w, reference + w);
 }
 
@@ -154,14 +145,9 @@ bool MapGuide::sampleBsdf(uint32_t vertex, const Material& material, const Shadi
     if (maps_.bifurcation && (lobes & kReflection) && (lobes & kTransmission) &&
         int(vertex) < settings_.bifurcationVertices)
         return sampleBifurcation(vertex, material, ctx, wo, radiance, bs);
-    if (lobes & kSpecular)
-        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
-                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
-    const InvertedMap2D* map = directionMap();
-    ++bounce_;
-    if (!map)
-        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
-                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
+    const InvertedMap2D* map = (lobes & kSpecular) ? nullptr : directionMap();
+    if (!(lobes & kSpecular)) ++bounce_;
+    if (!map) return standard_.sampleBsdf(vertex, material, ctx, frame, wo, radiance, bs);
     return sampleDirection(vertex, *map, material, ctx, frame, wo, radiance, bs);
 }
 
@@ -176,7 +162,7 @@ bool MapGuide::sampleBifurcation(uint32_t vertex, const Material& material,
     const float fresnel = material.reflectionChoice(ctx, wo);
     const float a = settings_.alpha;
     const float reflectProbability = a * q + (1 - a) * fresnel;
-    const float u = sample_.get1D(Decision::BsdfLobe, vertex);
+    const float u = sample().get1D(Decision::BsdfLobe, vertex);
     const bool reflect = u < reflectProbability;
     // A branch the material cannot take carries no light: the path ends with value 0.
     if (reflect ? !(fresnel > 0) : !(fresnel < 1)) return false;
@@ -186,7 +172,7 @@ bool MapGuide::sampleBifurcation(uint32_t vertex, const Material& material,
             ? std::min(fresnel * rescale(u, 0, reflectProbability), std::nextafter(fresnel, 0.0f))
             : std::min(fresnel + (1 - fresnel) * rescale(u, reflectProbability, 1),
                        kOneMinusEpsilon);
-    if (!material.sample(ctx, wo, uLobe, sample_.get2D(Decision::BsdfDirection, vertex), bs))
+    if (!material.sample(ctx, wo, uLobe, sample().get2D(Decision::BsdfDirection, vertex), bs))
         return false;
     const float chosen = reflect ? reflectProbability : 1 - reflectProbability;
     bs->weight *= bs->pdf / chosen;
@@ -199,8 +185,8 @@ bool MapGuide::sampleDirection(uint32_t vertex, const InvertedMap2D& map, const 
                                const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
                                const Rgb& radiance, BsdfSample* bs) {
     const float a = settings_.alpha;
-    const float u = sample_.get1D(Decision::BsdfLobe, vertex);
-    const Vec2 uDirection = sample_.get2D(Decision::BsdfDirection, vertex);
+    const float u = sample().get1D(Decision::BsdfLobe, vertex);
+    const Vec2 uDirection = sample().get2D(Decision::BsdfDirection, vertex);
     Vec2 cell;
     if (u < a) {
         // From the map: a world direction, evaluated through the material.

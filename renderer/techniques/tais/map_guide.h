@@ -33,7 +33,7 @@ class MapGuide {
     MapGuide(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
              const TaisSettings& settings, std::span<const char> invertible)
         : scene_(scene),
-          sample_(sample),
+          standard_(scene, sample),
           maps_(maps),
           settings_(settings),
           invertible_(invertible) {}
@@ -53,7 +53,7 @@ class MapGuide {
                     const Frame& frame, const Vec3& wo, const Rgb& radiance, BsdfSample* bs);
     float bsdfPdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
                   const Frame& frame, const Vec3& wo, const Vec3& wi) const;
-    const PixelSample& sample() const { return sample_; }
+    const PixelSample& sample() const { return standard_.sample(); }
 
     // Algorithm 1, line 19: the sample's value L(x) added to the temporary maps at the
     // coordinates of its decisions, credited as settings.credit says.
@@ -97,7 +97,7 @@ class MapGuide {
                          const Rgb& radiance, BsdfSample* bs);
 
     const Scene& scene_;
-    const PixelSample& sample_;
+    StandardSampling standard_;  // the decisions no map steers
     const PixelMaps& maps_;
     const TaisSettings& settings_;
     std::span<const char> invertible_;

@@ -36,6 +36,23 @@ void addFinished(const std::optional<Temporary>& t, std::optional<Map>& map, boo
     if (t) t->addFinishedTo(*map, floorFor(preimage, t->cells(), worldShare));
 }
 
+// Creates the enabled maps of a PixelMaps or TemporaryMaps (same members, map types with the
+// same constructors): 1-D maps from their cell count, 2-D maps from width and height.
+template <class Maps>
+void emplaceEnabled(Maps& m, const TaisSettings& s, int lightCount) {
+    if (s.uses(MapKind::Time)) m.time.emplace(s.timeCells);
+    if (s.uses(MapKind::ScatterDistance)) m.scatterDistance.emplace(s.scatterDistanceCells);
+    if (s.uses(MapKind::Bifurcation)) m.bifurcation.emplace(2 * s.bifurcationVertices);
+    if (s.uses(MapKind::LightSelection)) m.lightSelection.emplace(lightCount);
+    if (s.uses(MapKind::Lens)) m.lens.emplace(s.lensSize, s.lensSize);
+    if (s.uses(MapKind::PointOnLight))
+        m.pointOnLight.emplace(s.pointOnLightSize, s.pointOnLightSize);
+    if (s.uses(MapKind::ScatterDirection))
+        m.scatterDirection.assign(s.scatterDirectionBounces,
+                                  typename decltype(m.scatterDirection)::value_type(
+                                      s.scatterDirectionSize, s.scatterDirectionSize));
+}
+
 }  // namespace
 
 Vec2 directionToMap(const Vec3& w) {
@@ -53,16 +70,7 @@ Vec3 mapToDirection(Vec2 p) {
 
 PixelMaps PixelMaps::uniform(const TaisSettings& s, int lightCount) {
     PixelMaps m;
-    if (s.uses(MapKind::Time)) m.time.emplace(s.timeCells);
-    if (s.uses(MapKind::ScatterDistance)) m.scatterDistance.emplace(s.scatterDistanceCells);
-    if (s.uses(MapKind::Bifurcation)) m.bifurcation.emplace(2 * s.bifurcationVertices);
-    if (s.uses(MapKind::LightSelection)) m.lightSelection.emplace(lightCount);
-    if (s.uses(MapKind::Lens)) m.lens.emplace(s.lensSize, s.lensSize);
-    if (s.uses(MapKind::PointOnLight))
-        m.pointOnLight.emplace(s.pointOnLightSize, s.pointOnLightSize);
-    if (s.uses(MapKind::ScatterDirection))
-        m.scatterDirection.assign(s.scatterDirectionBounces,
-                                  InvertedMap2D(s.scatterDirectionSize, s.scatterDirectionSize));
+    emplaceEnabled(m, s, lightCount);
     m.normalize();
     return m;
 }
@@ -87,15 +95,7 @@ void PixelMaps::normalize() {
 }
 
 TemporaryMaps::TemporaryMaps(const TaisSettings& s, int lightCount) {
-    if (s.uses(MapKind::Time)) time.emplace(s.timeCells);
-    if (s.uses(MapKind::ScatterDistance)) scatterDistance.emplace(s.scatterDistanceCells);
-    if (s.uses(MapKind::Bifurcation)) bifurcation.emplace(2 * s.bifurcationVertices);
-    if (s.uses(MapKind::LightSelection)) lightSelection.emplace(lightCount);
-    if (s.uses(MapKind::Lens)) lens.emplace(s.lensSize, s.lensSize);
-    if (s.uses(MapKind::PointOnLight)) pointOnLight.emplace(s.pointOnLightSize, s.pointOnLightSize);
-    if (s.uses(MapKind::ScatterDirection))
-        scatterDirection.assign(s.scatterDirectionBounces,
-                                TemporaryMap2D(s.scatterDirectionSize, s.scatterDirectionSize));
+    emplaceEnabled(*this, s, lightCount);
 }
 
 void TemporaryMaps::clear() {

@@ -55,12 +55,6 @@ class MapRows {
             out->accumulate(mapsAt(neighbours[i], rowInBand));
         return int(neighbours.size());
     }
-    // Their average.
-    Maps startingMaps(int x, int rowInBand) const {
-        Maps maps = initial_;
-        maps.scale(1.0 / neighbourSum(x, rowInBand, &maps));
-        return maps;
-    }
     // The pixel's maps once it is rendered (Algorithm 1, line 24). They are swapped into the
     // row, so *maps is left holding stale maps whose memory the next pixel reuses.
     void store(int x, Maps* maps) { std::swap(current_[size_t(x)], *maps); }

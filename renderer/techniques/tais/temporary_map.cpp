@@ -11,17 +11,6 @@ int cellOf(float u, int cells) {
     return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
 }
 
-// Normalised weights plus `floor` per entry, renormalised (lines 22–23); all zero → uniform.
-std::vector<double> withFloor(const std::vector<double>& weights, double floor) {
-    const double sum = std::accumulate(weights.begin(), weights.end(), 0.0);
-    std::vector<double> out(weights.size(), 1.0 / weights.size());
-    if (!(sum > 0)) return out;
-    const double norm = 1.0 / (1.0 + floor * weights.size());
-    for (size_t i = 0; i < weights.size(); ++i)
-        out[i] = (weights[i] / sum + floor) * norm;
-    return out;
-}
-
 // map += the finished map of `weights`: (w / Σw + floor) / (1 + n · floor) per entry (lines
 // 22–23), uniform when nothing was added.
 template <class Map>
@@ -45,7 +34,10 @@ void TemporaryMap1D::splat(float u, double value) {
 }
 
 InvertedMap1D TemporaryMap1D::finish(double floorPerEntry) const {
-    return InvertedMap1D::fromWeights(withFloor(weights_, floorPerEntry));
+    InvertedMap1D map(cells());
+    map.scale(0);
+    addFinishedTo(map, floorPerEntry);
+    return map;
 }
 
 void TemporaryMap1D::addFinishedTo(InvertedMap1D& map, double floorPerEntry) const {
@@ -60,7 +52,10 @@ void TemporaryMap2D::splat(Vec2 u, double value) {
 }
 
 InvertedMap2D TemporaryMap2D::finish(double floorPerEntry) const {
-    return InvertedMap2D::fromWeights(withFloor(weights_, floorPerEntry), width_, height_);
+    InvertedMap2D map(width_, height_);
+    map.scale(0);
+    addFinishedTo(map, floorPerEntry);
+    return map;
 }
 
 void TemporaryMap2D::addFinishedTo(InvertedMap2D& map, double floorPerEntry) const {
