@@ -9,6 +9,8 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "io/exr_io.h"
 #include "support/child_process.h"
 #include "support/scratch.h"
@@ -161,6 +163,38 @@ TEST(Cli, CheckValidatesWithoutWritingAndHashesTheDocumentAfterOverrides) {
     for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir))
         ++files;
     EXPECT_EQ(files, 2u) << "only the captured stdout.txt and stderr.txt";
+}
+
+// `check --json` tells a missing asset from other bad input by a field, not by wording: the
+// experiment harness skips scenes whose third-party files are absent on this machine.
+TEST(Cli, CheckJsonSaysValidInvalidOrMissingAsset) {
+    const fs::path dir = scratchDirectory();
+    const ProcessResult valid = runProcess(RENDERER_BINARY, {"check", kScene, "--json"}, dir);
+    ASSERT_EQ(valid.status, 0) << valid.errors;
+    const nlohmann::json ok = nlohmann::json::parse(valid.out);
+    EXPECT_EQ(ok.at("valid"), true);
+    EXPECT_EQ(ok.at("integrator"), "path_mis");
+    EXPECT_EQ(ok.at("sceneSha256").get<std::string>().size(), 64u);
+
+    const ProcessResult invalid = runProcess(
+        RENDERER_BINARY, {"check", kScene, "--json", "--set", "/render/spp=0"}, dir);
+    EXPECT_EQ(invalid.status, 2);
+    const nlohmann::json bad = nlohmann::json::parse(invalid.out);
+    EXPECT_EQ(bad.at("valid"), false);
+    EXPECT_EQ(bad.at("error"), "invalid");
+    EXPECT_EQ(bad.at("pointer"), "/render/spp");
+
+    const fs::path scene = dir / "missing_mesh.json";
+    std::ofstream(scene) << R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "shapes": [{"type": "mesh", "file": "no_such_mesh_anywhere.ply",
+                    "material": {"type": "lambert", "albedo": 0.5}}],
+        "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 1}]})";
+    const ProcessResult missing =
+        runProcess(RENDERER_BINARY, {"check", scene.string(), "--json"}, dir);
+    EXPECT_EQ(missing.status, 2);
+    const nlohmann::json absent = nlohmann::json::parse(missing.out);
+    EXPECT_EQ(absent.at("error"), "missing_asset");
+    EXPECT_EQ(absent.at("pointer"), "/shapes/0/file");
 }
 
 TEST(Cli, UnwritableOutputIsRejectedBeforeRendering) {

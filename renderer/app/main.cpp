@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     CLI::App* check = app.add_subcommand(
         "check", "load and validate a scene (assets included) without rendering; exit 2 if bad");
     addSceneOptions(check, o);
+    check->add_flag("--json", o.json, "print the result as one JSON object");
 
     try {
         app.parse(argc, argv);

@@ -182,6 +182,45 @@ void writeOutputs(const RenderCommandOptions& o, const fs::path& out, ExrImage& 
     pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
+// Bad input: one line on stderr, or with `check --json` one object on stdout. Exit status 2.
+int reportBadInput(const RenderCommandOptions& o, const std::string& message,
+                   const std::string& pointer, ConfigError::Kind kind) {
+    if (o.checkOnly && o.json) {
+        const Json result = {
+            {"valid", false},
+            {"error", kind == ConfigError::Kind::MissingAsset ? "missing_asset" : "invalid"},
+            {"pointer", pointer},
+            {"message", message}};
+        std::printf("%s\n", result.dump().c_str());
+    } else {
+        std::fprintf(stderr, "error: %s\n", message.c_str());
+    }
+    return 2;
+}
+
+// `renderer check`: the scene is valid. The document hash is what a render records as
+// renderer.sceneSha256: it identifies the scene after overrides, independent of the file's
+// whitespace and comments.
+int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
+    const RenderSettings& settings = p.loaded.render;
+    const std::string features = featureList(p.loaded.scene->features());
+    const std::string sceneSha = sha256Hex(p.document.dump());
+    if (o.json) {
+        const Json result = {{"valid", true},
+                             {"integrator", p.loaded.integrator->name()},
+                             {"resolution", {settings.width, settings.height}},
+                             {"spp", settings.spp},
+                             {"features", features},
+                             {"sceneSha256", sceneSha}};
+        std::printf("%s\n", result.dump().c_str());
+    } else {
+        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n",
+                    o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width,
+                    settings.height, settings.spp, features.c_str(), sceneSha.c_str());
+    }
+    return 0;
+}
+
 }  // namespace
 
 int runRenderCommand(const RenderCommandOptions& o) {
@@ -189,26 +228,16 @@ int runRenderCommand(const RenderCommandOptions& o) {
     try {
         p = prepare(o);
     } catch (const ConfigError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
+        return reportBadInput(o, e.what(), e.pointer(), e.kind());
     } catch (const fs::filesystem_error& e) {  // unreadable scene or asset: bad input too
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
+        return reportBadInput(o, e.what(), "", ConfigError::Kind::Invalid);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;
     }
 
     const RenderSettings& settings = p.loaded.render;
-    if (o.checkOnly) {
-        // The document hash is what a render records as renderer.sceneSha256: it identifies
-        // the scene after overrides, independent of the file's whitespace and comments.
-        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n",
-                    o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width,
-                    settings.height, settings.spp, featureList(p.loaded.scene->features()).c_str(),
-                    sha256Hex(p.document.dump()).c_str());
-        return 0;
-    }
+    if (o.checkOnly) return reportValid(o, p);
     RenderOptions options;
     options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
     options.timeLimit = o.timeLimit;

@@ -21,11 +21,14 @@ struct RenderCommandOptions {
     float exposure = 0;
     bool preview = true;
     bool checkOnly = false;  // `renderer check`: load and validate, render nothing
+    bool json = false;       // `renderer check --json`: the result as one JSON object on stdout
 };
 
 // Exit status: 0 done, 1 failure while rendering or writing, 2 bad input (nothing written),
 // 130 interrupted (a valid image of the samples reached was written). With checkOnly: 0 valid,
-// 2 bad input.
+// 2 bad input; with json as well, stdout holds {"valid": true, "integrator", "resolution",
+// "spp", "features", "sceneSha256"} or {"valid": false, "error": "invalid" | "missing_asset",
+// "pointer", "message"}.
 int runRenderCommand(const RenderCommandOptions& options);
 
 }  // namespace rr

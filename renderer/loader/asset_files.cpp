@@ -7,9 +7,11 @@ std::filesystem::path readAssetPath(ObjectReader& json, const std::string& key,
     const std::string file = json.getString(key);
     const auto path = assets.resolve(file);
     if (!path)
-        json.fail(key, what + " \"" + file + "\" not found; searched " + assets.describe() +
-                           " (run `make assets`, or put the file under assets/ or set "
-                           "RENDERER_ASSETS)");
+        throw ConfigError(json.pointerTo(key),
+                          what + " \"" + file + "\" not found; searched " + assets.describe() +
+                              " (run `make assets`, or put the file under assets/ or set "
+                              "RENDERER_ASSETS)",
+                          ConfigError::Kind::MissingAsset);
     return *path;
 }
 
