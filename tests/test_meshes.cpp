@@ -6,6 +6,7 @@
 
 #include "io/mesh_io.h"
 #include "loader/asset_resolver.h"
+#include "scene/shapes/triangle_mesh.h"
 #include "support/chi2.h"
 #include "support/scene_testing.h"
 #include "support/scratch.h"

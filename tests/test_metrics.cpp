@@ -23,9 +23,9 @@ void expectClose(double actual, double expected) {
 }
 
 // An image from one RGB triple per pixel, row-major.
-RgbImage rgbImage(int width, int height, const std::vector<std::array<double, 3>>& pixels,
-                  const std::string& source = "image.exr") {
-    RgbImage image{source, width, height, {}};
+InputImage inputImage(int width, int height, const std::vector<std::array<double, 3>>& pixels,
+                      const std::string& source = "image.exr") {
+    InputImage image{source, width, height, {}};
     for (const auto& p : pixels)
         for (size_t c = 0; c < 3; ++c)
             image.channels[c].push_back(p[c]);
@@ -38,11 +38,11 @@ RgbImage rgbImage(int width, int height, const std::vector<std::array<double, 3>
 //   (1,0)      3 3 3       3 3 1        0  0 −2
 //   (0,1)      2 2 2       2 2 2        0  0  0
 //   (1,1)      2 2 2       2 2 2.5      0  0  0.5
-RgbImage reference2x2() {
-    return rgbImage(2, 2, {{1, 1, 1}, {3, 3, 3}, {2, 2, 2}, {2, 2, 2}}, "reference.exr");
+InputImage reference2x2() {
+    return inputImage(2, 2, {{1, 1, 1}, {3, 3, 3}, {2, 2, 2}, {2, 2, 2}}, "reference.exr");
 }
-RgbImage image2x2() {
-    return rgbImage(2, 2, {{2, 1, 1}, {3, 3, 1}, {2, 2, 2}, {2, 2, 2.5}});
+InputImage image2x2() {
+    return inputImage(2, 2, {{2, 1, 1}, {3, 3, 1}, {2, 2, 2}, {2, 2, 2.5}});
 }
 
 // Expects `f` to throw MetricsError with `mentions` in its message.
@@ -139,8 +139,8 @@ TEST(Metrics, TviErrorOnLuminanceDifferences) {
     EXPECT_EQ(c.luminance.tviErr, c.rgb.tviErr);
     // A scale of 1 puts La = Y in the middle piece: one pixel, reference (1,1,1), image
     // (2,1,1): e = 0.2126, tvi(1) = 0.3913015, tvi_err = 0.04519876/0.3913015 = 0.1155088.
-    const Comparison one = compareImages(rgbImage(1, 1, {{2, 1, 1}}),
-                                         rgbImage(1, 1, {{1, 1, 1}}, "reference.exr"), {0, 1});
+    const Comparison one = compareImages(inputImage(1, 1, {{2, 1, 1}}),
+                                         inputImage(1, 1, {{1, 1, 1}}, "reference.exr"), {0, 1});
     expectClose(one.rgb.tviErr, 0.1155088);
 }
 
@@ -183,8 +183,8 @@ TEST(Metrics, PerChannelAndLuminanceVariants) {
 
 TEST(Metrics, ChannelSigmaOverMuIsAbsentForAZeroChannelMean) {
     // Reference (1, 0, 1): the G mean is 0, the RGB mean 2/3.
-    const Comparison c =
-        compareImages(rgbImage(1, 1, {{1, 1, 1}}), rgbImage(1, 1, {{1, 0, 1}}, "reference.exr"));
+    const Comparison c = compareImages(inputImage(1, 1, {{1, 1, 1}}),
+                                       inputImage(1, 1, {{1, 0, 1}}, "reference.exr"));
     EXPECT_FALSE(c.channels[1].sigmaOverMu.has_value());
     expectClose(*c.rgb.sigmaOverMu, std::sqrt(1.0 / 3) / (2.0 / 3));
 }
@@ -338,17 +338,17 @@ TEST(Metrics, MergeOfTwoEqualHalvesEstimatesItsNoise) {
 }
 
 TEST(Metrics, BadImagesThrowTypedErrorsNamingTheProblem) {
-    const RgbImage small = rgbImage(1, 1, {{1, 1, 1}}, "small.exr");
+    const InputImage small = inputImage(1, 1, {{1, 1, 1}}, "small.exr");
     expectMetricsError([&] { compareImages(small, reference2x2()); },
                        "small.exr is 1x1 but the reference reference.exr is 2x2");
     expectMetricsError(
         [&] {
-            compareImages(small, rgbImage(1, 1, {{0, 0, 0}}, "zero.exr"));
+            compareImages(small, inputImage(1, 1, {{0, 0, 0}}, "zero.exr"));
         },
         "zero.exr has mean 0");
     expectMetricsError(
         [&] {
-            compareImages(small, rgbImage(1, 1, {{1, -2, 0}}, "neg.exr"));
+            compareImages(small, inputImage(1, 1, {{1, -2, 0}}, "neg.exr"));
         },
         "neg.exr has mean -0.333333");
     expectMetricsError(
@@ -362,17 +362,17 @@ TEST(Metrics, BadImagesThrowTypedErrorsNamingTheProblem) {
     const float inf = std::numeric_limits<float>::infinity();
     expectMetricsError(
         [&] {
-            rgbFromExr(exrImage(2, 2, {0, 0, 0, 0}, {0, 0, 0, nan}, {0, 0, 0, 0}), "nan.exr");
+            inputFromExr(exrImage(2, 2, {0, 0, 0, 0}, {0, 0, 0, nan}, {0, 0, 0, 0}), "nan.exr");
         },
         "nan.exr: NaN value in channel G at pixel (1, 1)");
     expectMetricsError(
         [&] {
-            rgbFromExr(exrImage(2, 1, {0, 0}, {0, 0}, {-inf, 0}), "inf.exr");
+            inputFromExr(exrImage(2, 1, {0, 0}, {0, 0}, {-inf, 0}), "inf.exr");
         },
         "inf.exr: infinite value in channel B at pixel (0, 0)");
     ExrImage noBlue = exrImage(1, 1, {0}, {0}, {0});
     noBlue.channels.erase("B");
-    expectMetricsError([&] { rgbFromExr(noBlue, "rg.exr"); }, "rg.exr: no channel B");
+    expectMetricsError([&] { inputFromExr(noBlue, "rg.exr"); }, "rg.exr: no channel B");
 }
 
 TEST(Metrics, BadMergeInputsThrowTypedErrors) {

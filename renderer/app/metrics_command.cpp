@@ -159,7 +159,7 @@ void compare(const CompareCommandOptions& o) {
     const ExrImage image = readInputExr(o.image);
     const ExrImage reference = readInputExr(o.reference);
     const Comparison c =
-        compareImages(rgbFromExr(image, o.image), rgbFromExr(reference, o.reference),
+        compareImages(inputFromExr(image, o.image), inputFromExr(reference, o.reference),
                       {o.relmseReject, o.cdPerUnit});
     const Json j = compareJson(o, image, c);
     std::fputs(o.json ? (j.dump(2) + "\n").c_str() : compareSummary(j).c_str(), stdout);

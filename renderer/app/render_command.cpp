@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "app/interrupt.h"
 #include "app/progress_bar.h"
+#include "config/json_document.h"
 #include "io/exr_io.h"
 #include "io/png_preview.h"
 #include "io/sha256.h"
@@ -26,14 +26,6 @@ namespace rr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string readFile(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw ConfigError("", "cannot open scene file " + file.string());
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // Command-line flags become JSON-pointer assignments applied after any --set, so the scene
 // document records exactly what was rendered.
@@ -111,7 +103,7 @@ void checkOutputWritable(const fs::path& out) {
 PreparedRender prepare(const RenderCommandOptions& o) {
     PreparedRender p;
     if (!fs::is_regular_file(o.scene)) throw ConfigError("", "scene file not found: " + o.scene);
-    p.fileText = readFile(o.scene);
+    p.fileText = readSceneText(o.scene);
     p.document = parseSceneText(p.fileText, o.scene);
     applyCommandLine(p.document, o);
     p.out = outputPath(o);

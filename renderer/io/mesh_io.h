@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "scene/shapes/triangle_mesh.h"
+#include "io/mesh_data.h"
 
 namespace rr {
 

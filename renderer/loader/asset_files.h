@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
+#include "config/json_reader.h"
 #include "io/rgb_image_io.h"
 #include "loader/asset_resolver.h"
-#include "loader/json_reader.h"
 
 namespace rr {
 

@@ -6,10 +6,10 @@
 #include <memory>
 #include <string>
 
+#include "config/json_reader.h"
 #include "integrators/integrator.h"
 #include "integrators/path_tracer.h"
 #include "loader/asset_resolver.h"
-#include "loader/json_reader.h"
 #include "math/transform.h"
 #include "scene/light.h"
 #include "scene/material.h"

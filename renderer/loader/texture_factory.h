@@ -8,8 +8,8 @@
 
 #include <string>
 
+#include "config/json_reader.h"
 #include "loader/asset_resolver.h"
-#include "loader/json_reader.h"
 #include "scene/checkerboard.h"
 #include "scene/texture.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <type_traits>
 
-#include "loader/json_reader.h"
+#include "config/json_reader.h"
 
 namespace rr {
 

@@ -10,6 +10,8 @@ namespace rr {
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
 inline constexpr float kTwoPi = 6.28318530717958647692f;
+// The largest float below 1: the upper end of sample coordinates in [0, 1).
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 struct Vec2 {
     float x = 0, y = 0;

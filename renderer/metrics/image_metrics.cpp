@@ -11,7 +11,7 @@ namespace rr {
 
 namespace {
 
-std::vector<double> luminance(const RgbImage& image) {
+std::vector<double> luminance(const InputImage& image) {
     std::vector<double> y(image.pixels());
     for (size_t i = 0; i < y.size(); ++i)
         y[i] = 0.2126 * image.channels[0][i] + 0.7152 * image.channels[1][i] +
@@ -60,7 +60,7 @@ double tviError(const std::vector<double>& x, const std::vector<double>& r,
     return sum / double(x.size());
 }
 
-void checkInputs(const RgbImage& image, const RgbImage& reference, const CompareOptions& o) {
+void checkInputs(const InputImage& image, const InputImage& reference, const CompareOptions& o) {
     if (!(o.relmseRejectFraction >= 0 && o.relmseRejectFraction < 0.5))
         throw MetricsError("the relMSE rejection fraction (--relmse-reject) must be in [0, 0.5)");
     if (!(std::isfinite(o.cdPerUnit) && o.cdPerUnit > 0))
@@ -74,7 +74,7 @@ void checkInputs(const RgbImage& image, const RgbImage& reference, const Compare
 
 }  // namespace
 
-Comparison compareImages(const RgbImage& image, const RgbImage& reference,
+Comparison compareImages(const InputImage& image, const InputImage& reference,
                          const CompareOptions& options) {
     checkInputs(image, reference, options);
     const double reject = options.relmseRejectFraction;

@@ -42,7 +42,7 @@ struct Comparison {
 
 // Throws MetricsError when the sizes differ, the reference's RGB mean is not positive, or an
 // option is out of range.
-Comparison compareImages(const RgbImage& image, const RgbImage& reference,
+Comparison compareImages(const InputImage& image, const InputImage& reference,
                          const CompareOptions& options = {});
 
 // The papers' efficiency 1 / (seconds · error); none when the error is 0 (a perfect image has

@@ -27,8 +27,8 @@ void checkFinite(const ExrImage& exr, const std::string& channel, const std::str
                                std::to_string(i / exr.width) + ")");
 }
 
-RgbImage rgbFromExr(const ExrImage& exr, const std::string& source) {
-    RgbImage image{source, exr.width, exr.height, {}};
+InputImage inputFromExr(const ExrImage& exr, const std::string& source) {
+    InputImage image{source, exr.width, exr.height, {}};
     for (size_t c = 0; c < 3; ++c) {
         const auto it = exr.channels.find(kRgbChannels[c]);
         if (it == exr.channels.end())

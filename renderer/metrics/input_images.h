@@ -14,7 +14,7 @@ namespace rr {
 inline constexpr std::array<const char*, 3> kRgbChannels{"R", "G", "B"};
 
 // The R, G, B channels of an image in double precision, all finite.
-struct RgbImage {
+struct InputImage {
     std::string source;  // the file it came from, for messages
     int width = 0, height = 0;
     std::array<std::vector<double>, 3> channels;  // R, G, B: width·height values, row-major
@@ -26,7 +26,7 @@ ExrImage readInputExr(const std::filesystem::path& file);
 
 // Throws when R, G or B is missing, or names the pixel (x, y) and channel of the first NaN or
 // infinity; `source` names the image in the message.
-RgbImage rgbFromExr(const ExrImage& exr, const std::string& source);
+InputImage inputFromExr(const ExrImage& exr, const std::string& source);
 
 // Throws unless every value of `channel` is finite.
 void checkFinite(const ExrImage& exr, const std::string& channel, const std::string& source);

@@ -42,13 +42,13 @@ Weights sppWeights(const std::vector<ExrImage>& inputs, const std::vector<std::s
     return weights;
 }
 
-std::vector<RgbImage> checkedRgb(const std::vector<ExrImage>& inputs,
-                                 const std::vector<std::string>& names) {
+std::vector<InputImage> checkedRgb(const std::vector<ExrImage>& inputs,
+                                   const std::vector<std::string>& names) {
     if (inputs.size() < 2)
         throw MetricsError("merge needs at least 2 images, got " + std::to_string(inputs.size()));
-    std::vector<RgbImage> rgb;
+    std::vector<InputImage> rgb;
     for (size_t i = 0; i < inputs.size(); ++i) {
-        rgb.push_back(rgbFromExr(inputs[i], names[i]));
+        rgb.push_back(inputFromExr(inputs[i], names[i]));
         if (rgb[i].width != rgb[0].width || rgb[i].height != rgb[0].height)
             throw MetricsError(names[i] + " is " + std::to_string(rgb[i].width) + "x" +
                                std::to_string(rgb[i].height) + " but " + names[0] + " is " +
@@ -70,7 +70,7 @@ bool checkedVariance(const std::vector<ExrImage>& inputs, const std::vector<std:
 
 // For independent halves of equal variance σ², Var(A − B) = 2σ² while Var((A + B)/2) = σ²/2:
 // the merged image's noise is a quarter of the difference's variance, half its RMS.
-HalfDifferenceNoise halfDifferenceNoise(const RgbImage& a, const RgbImage& b, double mean) {
+HalfDifferenceNoise halfDifferenceNoise(const InputImage& a, const InputImage& b, double mean) {
     double squared = 0;
     for (size_t c = 0; c < 3; ++c)
         for (size_t p = 0; p < a.pixels(); ++p) {
@@ -115,7 +115,7 @@ void addAttributes(const std::vector<ExrImage>& inputs, const std::vector<std::s
 
 MergedReference mergeImages(const std::vector<ExrImage>& inputs,
                             const std::vector<std::string>& names) {
-    const std::vector<RgbImage> rgb = checkedRgb(inputs, names);
+    const std::vector<InputImage> rgb = checkedRgb(inputs, names);
     const bool variance = checkedVariance(inputs, names);
     const Weights weights = sppWeights(inputs, names);
     const size_t pixels = rgb[0].pixels();

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "math/vector.h"
+
 namespace rr {
 
 Distribution1D::Distribution1D(std::span<const float> weights) {
@@ -30,14 +32,14 @@ int Distribution1D::sample(float u, float* pmf, float* uRemapped) const {
     if (uRemapped) {
         const double width = cdf_[i + 1] - cdf_[i];
         const double r = width > 0 ? (u - cdf_[i]) / width : 0.0;
-        *uRemapped = std::min(static_cast<float>(r), 0x1.fffffep-1f);
+        *uRemapped = std::min(static_cast<float>(r), kOneMinusEpsilon);
     }
     return i;
 }
 
 float Distribution1D::invert(int index, float uRemapped) const {
     const double u = cdf_[index] + double(uRemapped) * (cdf_[index + 1] - cdf_[index]);
-    return std::min(static_cast<float>(u), 0x1.fffffep-1f);
+    return std::min(static_cast<float>(u), kOneMinusEpsilon);
 }
 
 }  // namespace rr

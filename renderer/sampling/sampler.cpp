@@ -26,7 +26,7 @@ float rotate(float x, uint32_t bits) {
 
 // min(x, 1 − 2^-24), also mapping NaN below one.
 float belowOne(float x) {
-    return x < 0x1.fffffep-1f ? x : 0x1.fffffep-1f;
+    return x < kOneMinusEpsilon ? x : kOneMinusEpsilon;
 }
 
 uint32_t high32(uint64_t h) {

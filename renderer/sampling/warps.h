@@ -10,9 +10,7 @@
 
 namespace rr {
 
-// The largest float below 1, and a point clamped into [0,1)², the warps' domain (inverses round
-// onto its edges and clamp back).
-inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+// A point clamped into [0,1)², the warps' domain (inverses round onto its edges and clamp back).
 inline Vec2 clampToUnitSquare(Vec2 u) {
     return {clamp(u.x, 0.0f, kOneMinusEpsilon), clamp(u.y, 0.0f, kOneMinusEpsilon)};
 }

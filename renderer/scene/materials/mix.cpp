@@ -21,7 +21,7 @@ bool MixMaterial::sample(const ShadingContext& ctx, const Vec3& wo, float uLobe,
     const float probability = chooseA ? w : 1.0f - w;
     // uLobe is uniform on [0, w) or [w, 1): map each interval onto [0, 1).
     const float rescaled = chooseA ? uLobe / w : (uLobe - w) / (1.0f - w);
-    const float childLobe = std::min(rescaled, 0x1.fffffep-1f);  // rounding may reach 1
+    const float childLobe = std::min(rescaled, kOneMinusEpsilon);  // rounding may reach 1
     if (!(chooseA ? a_ : b_)->sample(ctx, wo, childLobe, uDirection, out)) return false;
     if (out->isSpecular()) {
         out->pdf *= probability;  // (probability·value) / (probability·p): the weight stands

@@ -18,9 +18,12 @@ class Disk final : public Shape {
     bool invertSampleDirection(const Vec3& reference, const Vec3& point, Vec2* u) const override;
     bool invertsSamples() const override { return !hasMotion(); }
 
-    // Ray parameter of the hit with the disk displaced by `offset`, if within (tMin, tMax).
-    bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& offset, float tMin,
-                   float tMax, float* t) const;
+    // The user-geometry callbacks (user_geometry.h): bounds at a time step, the ray parameter
+    // of the hit with the disk where it is at `time` if within (tMin, tMax), the normal there.
+    RTCBounds boundsAt(float timeStep) const;
+    bool hitDistance(const Vec3& origin, const Vec3& direction, float time, float tMin, float tMax,
+                     float* t) const;
+    Vec3 hitNormal(const Vec3&, const Vec3&, float, float) const { return frame_.n; }
     Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
     float radius() const { return radius_; }
     const Vec3& normal() const { return frame_.n; }

@@ -171,8 +171,8 @@ bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSa
         }
         if (!(area > 0)) return false;  // a degenerate last triangle, reached by rounding
         const float remapped = float(std::clamp((target - before) / area, 0.0, 1.0));
-        const DVec3 w =
-            sampleSphericalTriangle(v0, a, b, area, Vec2(std::min(remapped, 0x1.fffffep-1f), u.y));
+        const DVec3 w = sampleSphericalTriangle(v0, a, b, area,
+                                                Vec2(std::min(remapped, kOneMinusEpsilon), u.y));
         // Where the direction meets the polygon's plane.
         const DVec3 n(normal_);
         const double t = dot(DVec3(vertices_[0] + offset) - r, n) / dot(w, n);

@@ -3,67 +3,23 @@
 #include <cmath>
 
 #include "sampling/warps.h"
+#include "scene/shapes/user_geometry.h"
 
 namespace rr {
 
-namespace {
-
-void sphereBounds(const RTCBoundsFunctionArguments* args) {
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    const Vec3 c = s->centerAt(static_cast<float>(args->timeStep));
-    const float r = s->radius() * (1.0f + 1e-6f);
-    *args->bounds_o = RTCBounds{c.x - r, c.y - r, c.z - r, 0, c.x + r, c.y + r, c.z + r, 0};
+RTCBounds Sphere::boundsAt(float timeStep) const {
+    const Vec3 c = centerAt(timeStep);
+    const float r = radius_ * (1.0f + 1e-6f);
+    return RTCBounds{c.x - r, c.y - r, c.z - r, 0, c.x + r, c.y + r, c.z + r, 0};
 }
 
-Vec3 rayOrigin(RTCRayN* rays, unsigned n, unsigned i) {
-    return {RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i)};
-}
-Vec3 rayDirection(RTCRayN* rays, unsigned n, unsigned i) {
-    return {RTCRayN_dir_x(rays, n, i), RTCRayN_dir_y(rays, n, i), RTCRayN_dir_z(rays, n, i)};
+Vec3 Sphere::hitNormal(const Vec3& origin, const Vec3& direction, float time, float t) const {
+    return origin + direction * t - centerAt(time);
 }
 
-void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
-    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] == 0) continue;
-        const Vec3 c = s->centerAt(RTCRayN_time(rays, args->N, i));
-        float t;
-        if (!s->intersect(rayOrigin(rays, args->N, i), rayDirection(rays, args->N, i), c,
-                          RTCRayN_tnear(rays, args->N, i), RTCRayN_tfar(rays, args->N, i), &t))
-            continue;
-        RTCRayN_tfar(rays, args->N, i) = t;
-        const Vec3 p = rayOrigin(rays, args->N, i) + rayDirection(rays, args->N, i) * t;
-        const Vec3 n = p - c;
-        RTCHitN_Ng_x(hits, args->N, i) = n.x;
-        RTCHitN_Ng_y(hits, args->N, i) = n.y;
-        RTCHitN_Ng_z(hits, args->N, i) = n.z;
-        RTCHitN_u(hits, args->N, i) = 0;
-        RTCHitN_v(hits, args->N, i) = 0;
-        RTCHitN_primID(hits, args->N, i) = args->primID;
-        RTCHitN_geomID(hits, args->N, i) = args->geomID;
-        RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
-    }
-}
-
-void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] == 0) continue;
-        const Vec3 c = s->centerAt(RTCRayN_time(args->ray, args->N, i));
-        float t;
-        if (s->intersect(rayOrigin(args->ray, args->N, i), rayDirection(args->ray, args->N, i), c,
-                         RTCRayN_tnear(args->ray, args->N, i), RTCRayN_tfar(args->ray, args->N, i),
-                         &t))
-            RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
-    }
-}
-
-}  // namespace
-
-bool Sphere::intersect(const Vec3& origin, const Vec3& direction, const Vec3& center, float tMin,
-                       float tMax, float* t) const {
+bool Sphere::hitDistance(const Vec3& origin, const Vec3& direction, float time, float tMin,
+                         float tMax, float* t) const {
+    const Vec3 center = centerAt(time);
     const double ox = double(origin.x) - center.x, oy = double(origin.y) - center.y,
                  oz = double(origin.z) - center.z;
     const double dx = direction.x, dy = direction.y, dz = direction.z;
@@ -90,15 +46,7 @@ bool Sphere::intersect(const Vec3& origin, const Vec3& direction, const Vec3& ce
 }
 
 RTCGeometry Sphere::createGeometry(RTCDevice device) const {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, 1);
-    rtcSetGeometryTimeStepCount(g, hasMotion() ? 2 : 1);
-    rtcSetGeometryUserData(g, const_cast<Sphere*>(this));
-    rtcSetGeometryBoundsFunction(g, sphereBounds, nullptr);
-    rtcSetGeometryIntersectFunction(g, sphereIntersect);
-    rtcSetGeometryOccludedFunction(g, sphereOccluded);
-    rtcCommitGeometry(g);
-    return g;
+    return createUserGeometry(device, *this);
 }
 
 void Sphere::completeHit(const Ray& ray, const RTCHit&, SurfaceHit* out) const {
@@ -137,7 +85,7 @@ bool Sphere::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSam
     const Vec3 w = frame.toWorld(squareToUniformCone(u, oneMinusCosMax));
     float t;
     Vec3 n;
-    if (intersect(reference, w, c, 0.0f, std::numeric_limits<float>::infinity(), &t)) {
+    if (hitDistance(reference, w, time, 0.0f, std::numeric_limits<float>::infinity(), &t)) {
         n = normalize(reference + w * t - c);
     } else {
         // Grazing direction lost to rounding: take the tangent point (the ray's closest

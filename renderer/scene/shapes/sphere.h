@@ -36,10 +36,13 @@ class Sphere final : public Shape {
     Vec3 centerAt(float time) const { return center_ + offsetAt(time); }
     float radius() const { return radius_; }
 
-    // Nearest t in (tMin, tMax) where the ray meets the sphere centred at `center`; the
-    // quadratic is solved in double precision with the numerically stable root form.
-    bool intersect(const Vec3& origin, const Vec3& direction, const Vec3& center, float tMin,
-                   float tMax, float* t) const;
+    // The user-geometry callbacks (user_geometry.h). hitDistance: the nearest t in
+    // (tMin, tMax) where the ray meets the sphere at `time`; the quadratic is solved in double
+    // precision with the numerically stable root form.
+    RTCBounds boundsAt(float timeStep) const;
+    bool hitDistance(const Vec3& origin, const Vec3& direction, float time, float tMin, float tMax,
+                     float* t) const;
+    Vec3 hitNormal(const Vec3& origin, const Vec3& direction, float time, float t) const;
 
   private:
     // Whether sampleDirection samples the cone the sphere subtends from a reference point at

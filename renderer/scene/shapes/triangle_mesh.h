@@ -5,16 +5,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "io/mesh_data.h"
 #include "sampling/distribution1d.h"
 #include "scene/shape.h"
 
 namespace rr {
-
-struct MeshData {
-    std::vector<Vec3> positions;
-    std::vector<uint32_t> indices;  // 3 per triangle
-    std::vector<Vec3> normals;      // empty, or one per position
-};
 
 class TriangleMesh final : public Shape {
   public:

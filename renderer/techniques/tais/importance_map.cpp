@@ -8,13 +8,6 @@ namespace rr::tais {
 
 namespace {
 
-// The largest float below 1: warped coordinates stay in [0, 1) like the uniform ones.
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
-
-int cellOf(float x, int cells) {
-    return std::clamp(static_cast<int>(x * cells), 0, cells - 1);
-}
-
 // The point at `fraction` of `cell`, in float, nudged so that it lies in that cell as pdf()
 // and cdf() locate it: rounding (cell + fraction)/cells can land on the next cell's edge,
 // where the density differs.

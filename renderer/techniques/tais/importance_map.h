@@ -16,12 +16,18 @@
 // sampling, with density p_map(u') (TAIS: p_tot = p_map · p_is).
 #pragma once
 
+#include <algorithm>
 #include <span>
 #include <vector>
 
 #include "math/vector.h"
 
 namespace rr::tais {
+
+// The cell that u ∈ [0, 1) falls in when [0, 1) is cut into `cells` equal cells.
+inline int cellOf(float u, int cells) {
+    return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
+}
 
 // Inversion of running sums `sums` (size cells + 1, non-decreasing, sums.back() > 0): the cell
 // that u ∈ [0, 1) falls in under the inverse CDF, and the position within it.

@@ -8,8 +8,6 @@ namespace rr::tais {
 
 namespace {
 
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
-
 // The brightness |L| a map accumulates: the mean of the channels' magnitudes, so that a red, a
 // green and a blue light of equal power count equally.
 double brightness(const Rgb& c) {

@@ -7,8 +7,6 @@ namespace rr::tais {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
-
 template <class Map>
 void accumulateInto(std::optional<Map>& to, const std::optional<Map>& from, double scale) {
     if (to) to->accumulate(*from, scale);
@@ -58,7 +56,7 @@ void emplaceEnabled(Maps& m, const TaisSettings& s, int lightCount) {
 Vec2 directionToMap(const Vec3& w) {
     float phi = std::atan2(w.y, w.x) * (0.5f / kPi);
     if (phi < 0) phi += 1;
-    return {std::min(phi, 0x1.fffffep-1f), std::clamp(0.5f * (1 - w.z), 0.0f, 0x1.fffffep-1f)};
+    return {std::min(phi, kOneMinusEpsilon), std::clamp(0.5f * (1 - w.z), 0.0f, kOneMinusEpsilon)};
 }
 
 Vec3 mapToDirection(Vec2 p) {

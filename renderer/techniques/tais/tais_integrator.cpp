@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "config/config_error.h"
+#include "config/json_reader.h"
 #include "integrators/path_walk.h"
-#include "loader/config_error.h"
-#include "loader/json_reader.h"
 #include "techniques/tais/contribution_filter.h"
 #include "techniques/tais/map_guide.h"
 #include "techniques/tais/scan.h"

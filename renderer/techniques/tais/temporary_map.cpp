@@ -7,10 +7,6 @@ namespace rr::tais {
 
 namespace {
 
-int cellOf(float u, int cells) {
-    return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
-}
-
 // map += the finished map of `weights`: (w / Σw + floor) / (1 + n · floor) per entry (lines
 // 22–23), uniform when nothing was added.
 template <class Map>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "loader/config_error.h"
+#include "config/config_error.h"
 #include "math/rgb.h"
 #include "math/vector.h"
 

@@ -1,4 +1,4 @@
-#include "loader/json_reader.h"
+#include "config/json_reader.h"
 
 #include <cmath>
 #include <sstream>

@@ -1,0 +1,32 @@
+#include "loader/camera_reader.h"
+
+namespace rr {
+
+CameraSettings readCamera(ObjectReader& j) {
+    CameraSettings c;
+    const std::string type = j.getChoice("type", {"pinhole", "thin_lens"}, "pinhole");
+    c.position = j.getVec3("position");
+    c.lookAt = j.getVec3("look_at");
+    c.up = j.getVec3("up", Vec3(0, 1, 0));
+    c.verticalFovDegrees = j.getFloat("fov", 40.0f, Range::open(0, 180));
+    const Vec3 forward = c.lookAt - c.position;
+    if (!(length(forward) > 0)) j.fail("look_at", "must differ from the camera position");
+    if (!(length(c.up) > 0)) j.fail("up", "expected a non-zero vector");
+    c.up = normalize(c.up);  // only its direction matters: a tiny up is as good as a unit one
+    if (!(length(cross(normalize(forward), c.up)) > 1e-4f))
+        j.fail("up", "must not be parallel to the viewing direction");
+    if (type == "thin_lens") {
+        c.apertureRadius = j.getFloat("aperture_radius", Range::positive());
+        c.focusDistance = j.getFloat("focus_distance", Range::positive());
+    }
+    if (j.has("shutter")) {
+        const auto s = j.getNumbers("shutter", 2, Range::unit());
+        if (s[0] > s[1]) j.fail("shutter", "expected [open, close] with open <= close");
+        c.shutterOpen = static_cast<float>(s[0]);
+        c.shutterClose = static_cast<float>(s[1]);
+    }
+    j.finish();
+    return c;
+}
+
+}  // namespace rr

@@ -1,0 +1,45 @@
+#include "loader/render_settings_reader.h"
+
+#include <cmath>
+#include <string>
+
+#include "render/renderer.h"
+
+namespace rr {
+
+namespace {
+
+constexpr double kMaxPixels = 67108864.0;  // 2^26
+
+}  // namespace
+
+RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
+    RenderSettings r;
+    if (j.has("resolution")) {
+        const auto res = j.getNumbers("resolution", 2, Range::closed(1, 16384));
+        if (res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]))
+            j.fail("resolution", "expected two integers");
+        // The film holds several floats per pixel and the EXR a copy: 2^26 pixels (e.g.
+        // 8192 × 8192) keep both within a few GB.
+        if (res[0] * res[1] > kMaxPixels)
+            j.fail("resolution", "width × height = " + std::to_string(int64_t(res[0] * res[1])) +
+                                     " pixels exceeds the limit of 2^26 = " +
+                                     std::to_string(int64_t(kMaxPixels)));
+        r.width = static_cast<int>(res[0]);
+        r.height = static_cast<int>(res[1]);
+    }
+    r.spp = static_cast<uint32_t>(j.getInt("spp", 16, Range::closed(1, kMaxSpp)));
+    r.seed = static_cast<uint32_t>(j.getInt("seed", 0, Range::closed(0, 4294967295.0)));
+    const std::string sampler =
+        j.getChoice("sampler", {"independent", "stratified", "hammersley"}, "independent");
+    parseSamplerType(sampler, &r.sampler);
+    path->maxDepth = static_cast<int>(j.getInt("max_depth", 16, Range::closed(-1, 100000)));
+    path->rrDepth = static_cast<int>(j.getInt("rr_depth", 4, Range::closed(1, 100000)));
+    r.lightSelection = j.getChoice("light_selection", {"power", "uniform"}, "power") == "uniform"
+                           ? LightSelection::Uniform
+                           : LightSelection::Power;
+    j.finish();
+    return r;
+}
+
+}  // namespace rr

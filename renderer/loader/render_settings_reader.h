@@ -1,0 +1,24 @@
+// The scene's "render" object: image size, samples, seed, sampler, path length, light selection.
+#pragma once
+
+#include <cstdint>
+
+#include "config/json_reader.h"
+#include "integrators/path_tracer.h"
+#include "sampling/sampler.h"
+#include "scene/light_selector.h"
+
+namespace rr {
+
+struct RenderSettings {
+    int width = 256, height = 256;
+    uint32_t spp = 16;
+    uint32_t seed = 0;
+    SamplerType sampler = SamplerType::Independent;
+    LightSelection lightSelection = LightSelection::Power;
+};
+
+// Reads the "render" object; its path-length keys go to *path.
+RenderSettings readRenderSettings(ObjectReader& json, PathSettings* path);
+
+}  // namespace rr
