@@ -82,6 +82,8 @@ struct PreparedRender {
     Json document;  // after overrides
     std::string fileText;
     fs::path out;
+    uint32_t spp = 0;  // samples per pixel; with a time limit, an upper bound
+    std::unique_ptr<RenderSchedule> schedule;
 };
 
 // Creates the output directory and proves a file can be written there, so a render is never
@@ -108,18 +110,21 @@ PreparedRender prepare(const RenderCommandOptions& o) {
     applyCommandLine(p.document, o);
     p.out = outputPath(o);
     p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
-    if (o.timeLimit > 0 && dynamic_cast<const BandIntegrator*>(p.loaded.integrator.get()))
+    const RenderSettings& settings = p.loaded.render;
+    p.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
+    p.schedule = p.loaded.schedule(
+        ScheduleInputs{*p.loaded.scene, settings.width, settings.height, p.spp, o.timeLimit});
+    if (o.timeLimit > 0 && !p.schedule->supportsTimeLimit())
         throw ConfigError("/integrator/type",
                           p.loaded.integrator->name() +
-                              " renders a fixed number of samples per pixel in scan order; "
+                              " renders a fixed number of samples per pixel in its own order; "
                               "--time-limit cannot stop it part-way (use --spp)");
     if (!o.checkOnly) checkOutputWritable(p.out);
     return p;
 }
 
-void addMetadata(const RenderCommandOptions& o, const PreparedRender& p,
-                 const RenderOptions& options, const RenderStats& stats, int threads,
-                 ExrImage* image) {
+void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const RenderStats& stats,
+                 int threads, ExrImage* image) {
     const RenderSettings& settings = p.loaded.render;
     auto& a = image->attributes;
     a["renderer.version"] = std::string(kRendererVersion);
@@ -130,7 +135,7 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p,
     a["renderer.integrator"] = p.loaded.integrator->name();
     a["renderer.integratorParameters"] = p.loaded.integrator->parameters().dump();
     a["renderer.spp"] = static_cast<int>(stats.spp);
-    a["renderer.sppRequested"] = static_cast<int>(options.spp);
+    a["renderer.sppRequested"] = static_cast<int>(p.spp);
     a["renderer.timeLimit"] = o.timeLimit;
     a["renderer.seed"] = static_cast<double>(settings.seed);
     a["renderer.sampler"] = std::string(samplerName(settings.sampler));
@@ -231,7 +236,6 @@ int runRenderCommand(const RenderCommandOptions& o) {
     const RenderSettings& settings = p.loaded.render;
     if (o.checkOnly) return reportValid(o, p);
     RenderOptions options;
-    options.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
     options.timeLimit = o.timeLimit;
     options.seed = settings.seed;
     options.threads = o.threads;
@@ -244,14 +248,14 @@ int runRenderCommand(const RenderCommandOptions& o) {
     RenderStats stats;
     try {
         Film film(settings.width, settings.height);
-        stats = render(*p.loaded.scene, *p.loaded.integrator, options, film,
+        stats = render(*p.schedule, options, film,
                        [&](const RenderProgress& progress) { bar.update(progress); });
-        if (stats.spp == 0) {  // interrupted before any image was complete
+        if (!stats.complete) {  // interrupted before any image was complete
             bar.finish("interrupted before a complete image; nothing written");
             return 130;
         }
         ExrImage image = filmToExr(film);
-        addMetadata(o, p, options, stats, threads, &image);
+        addMetadata(o, p, stats, threads, &image);
         writeOutputs(o, p.out, image);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -1,57 +1,25 @@
 #include "integrators/direct_lighting.h"
 
-#include "scene/lights/area_light.h"
+#include "integrators/scattering_vertex.h"
 
 namespace rr {
 
-const char* directStrategyName(DirectStrategy s) {
-    switch (s) {
-        case DirectStrategy::Light:
-            return "light";
-        case DirectStrategy::Bsdf:
-            return "bsdf";
-        case DirectStrategy::Mis:
-            return "mis";
-    }
-    return "?";
-}
-
 nlohmann::json DirectLighting::parameters() const {
     return {{"type", name()},
-            {"strategy", directStrategyName(settings_.strategy)},
-            {"light_samples", settings_.lightSamples},
-            {"bsdf_samples", settings_.bsdfSamples}};
-}
-
-float DirectLighting::weight(float nSelf, float pdfSelf, float nOther, float pdfOther) const {
-    return settings_.strategy == DirectStrategy::Mis
-               ? powerHeuristic(nSelf, pdfSelf, nOther, pdfOther)
-               : 1.0f;
-}
-
-Rgb DirectLighting::escapedToInfiniteLights(const Scene& scene, const Vec3& w,
-                                            const Vec3& reference, const BsdfSample& bs,
-                                            float nBsdf, float nLight) const {
-    Rgb sum(0.0f);
-    for (const Light* light : scene.infiniteLights()) {
-        const Rgb le = light->escapedRadiance(w);
-        if (le.isBlack()) continue;
-        const float misWeight =
-            bs.isSpecular()
-                ? 1.0f
-                : weight(nBsdf, bs.pdf, nLight,
-                         scene.lightSelector().pmf(*light, reference) * light->directionPdf(w));
-        sum += le * (misWeight / nBsdf);
-    }
-    return sum;
+            {"strategy", estimator_->name()},
+            {"estimator", estimator_->parameters()},
+            {"bsdf_samples", bsdfSamples_}};
 }
 
 Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                              RayCounters& rays) const {
-    const Ray cameraRay = generateCameraRay(scene.camera(), x, y, sample);
+    StandardSampling standard(scene, sample);
+    float cameraWeight;
+    const Ray cameraRay = standard.cameraRay(x, y, &cameraWeight);
     ++rays.camera;
     SurfaceHit hit;
-    if (!scene.intersect(cameraRay, &hit)) return escapedRadiance(scene, cameraRay.direction);
+    if (!scene.intersect(cameraRay, &hit))
+        return escapedRadiance(scene, cameraRay.direction, [](const Light&) { return 1.0f; });
 
     Rgb radiance(0.0f);
     if (const AreaLight* light = hit.shape->areaLight())
@@ -62,60 +30,51 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
     const Frame frame = hit.shadingFrame();
     const Vec3 wo = frame.toLocal(-cameraRay.direction);
     const ShadingContext ctx{hit.uv, hit.position};
-    const float nLight = usesLights() ? static_cast<float>(settings_.lightSamples) : 0.0f;
-    const float nBsdf = usesBsdf() ? static_cast<float>(settings_.bsdfSamples) : 0.0f;
-    const LightSelector& selector = scene.lightSelector();
-
-    for (int i = 0; usesLights() && i < settings_.lightSamples; ++i) {
-        const auto n = static_cast<uint32_t>(settings_.lightSamples);
-        const auto r = static_cast<uint32_t>(i);
-        float pmf;
-        const Light* light = selector.select(
-            sample.get1D(DecisionSite{Decision::LightSelect, 0, r, n}), hit.position, &pmf);
-        LightSample ls;
-        if (!light ||
-            !light->sample(hit.position, sample.get2D(DecisionSite{Decision::LightPoint, 0, r, n}),
-                           hit.time, &ls))
-            continue;
-        const Vec3 wi = frame.toLocal(ls.direction);
-        const Rgb f = material->eval(ctx, wo, wi);
-        if (f.isBlack()) continue;
-        ++rays.shadow;
-        if (scene.occluded(hit.spawnTo(ls.position, ls.normal, ls.errorScale))) continue;
-        const float lightPdf = pmf * ls.pdf;
-        const float w =
-            ls.isDelta ? 1.0f : weight(nLight, lightPdf, nBsdf, material->pdf(ctx, wo, wi));
-        radiance += f * ls.radiance * (w / (lightPdf * nLight));
+    if (estimator_->lightSamples() > 0) {
+        const Rgb unscaled(1.0f);
+        const VertexOutput<StandardSampling> out{standard, 0, unscaled, radiance, rays};
+        SurfaceVertex<false, StandardSampling> point(out, hit, *material, ctx, frame, wo, nullptr,
+                                                     static_cast<float>(tracedBsdfSamples()));
+        estimator_->estimate(point);
     }
+    addBsdfSamples(standard, hit, *material, ctx, frame, wo, rays, &radiance);
+    return radiance;
+}
 
-    for (int i = 0; usesBsdf() && i < settings_.bsdfSamples; ++i) {
-        const auto n = static_cast<uint32_t>(settings_.bsdfSamples);
-        const auto r = static_cast<uint32_t>(i);
+void DirectLighting::addBsdfSamples(const StandardSampling& standard, const SurfaceHit& hit,
+                                    const Material& material, const ShadingContext& ctx,
+                                    const Frame& frame, const Vec3& wo, RayCounters& rays,
+                                    Rgb* radiance) const {
+    const Scene& scene = standard.scene();
+    const uint32_t n = tracedBsdfSamples();
+    const float nBsdf = static_cast<float>(n);
+    for (uint32_t r = 0; r < n; ++r) {
         BsdfSample bs;
-        if (!material->sample(ctx, wo, sample.get1D(DecisionSite{Decision::BsdfLobe, 0, r, n}),
-                              sample.get2D(DecisionSite{Decision::BsdfDirection, 0, r, n}), &bs))
+        if (!material.sample(ctx, wo, standard.sample().get1D({Decision::BsdfLobe, 0, r, n}),
+                             standard.sample().get2D({Decision::BsdfDirection, 0, r, n}), &bs))
             continue;
         ++rays.extension;
         SurfaceHit lightHit;
-        const Vec3 wiWorld = frame.toWorld(bs.wi);
-        if (!scene.intersect(hit.spawn(wiWorld), &lightHit)) {
-            // Escaped: the infinite lights, weighted as area lights are below.
-            radiance += bs.weight *
-                        escapedToInfiniteLights(scene, wiWorld, hit.position, bs, nBsdf, nLight);
+        const Vec3 wi = frame.toWorld(bs.wi);
+        // The weight of the emission found, divided by the number of samples.
+        auto weight = [&](const auto& lightPdf) {
+            return foundEmissionWeight(*estimator_, bs.isSpecular(), nBsdf, bs.pdf, lightPdf) /
+                   nBsdf;
+        };
+        if (!scene.intersect(hit.spawn(wi), &lightHit)) {
+            *radiance +=
+                bs.weight * escapedRadiance(scene, wi, [&](const Light& light) {
+                    return weight([&] { return standard.lightPdf(0, light, hit.position, wi); });
+                });
             continue;
         }
         const AreaLight* light = lightHit.shape->areaLight();
         if (!light) continue;
-        const Rgb le = light->emitted(lightHit.geometricNormal, -frame.toWorld(bs.wi));
+        const Rgb le = light->emitted(lightHit.geometricNormal, -wi);
         if (le.isBlack()) continue;
-        const float w =
-            bs.isSpecular()
-                ? 1.0f
-                : weight(nBsdf, bs.pdf, nLight,
-                         selector.pmf(*light, hit.position) * light->pdf(hit.position, lightHit));
-        radiance += bs.weight * le * (w / nBsdf);
+        *radiance += bs.weight * le *
+                     weight([&] { return standard.lightPdf(0, *light, hit.position, lightHit); });
     }
-    return radiance;
 }
 
 }  // namespace rr

@@ -1,48 +1,46 @@
-// Direct illumination only (emission seen by the camera plus one bounce to a light), with a
-// choice of strategy: `light` (next-event estimation), `bsdf` (BSDF sampling) or `mis` (both,
-// power heuristic with sample counts, Veach 1997 §9.2). `lightSamples` and `bsdfSamples`
-// draws per pixel sample are stratified together by structured samplers.
+// Direct illumination only: emission seen by the camera plus light that reaches the first hit
+// from an emitter in one bounce. A direct-lighting estimator (`light`, `bsdf`, `mis`, or a
+// technique's) makes the light samples; the integrator adds `bsdfSamples` BSDF samples of its
+// own, whose emission counts as the estimator says (in full, MIS-weighted with sample counts,
+// Veach 1997 §9.2, or not at all, in which case they are not traced). Draws of one decision
+// per pixel sample are stratified together by structured samplers.
 #pragma once
 
 #include <algorithm>
+#include <memory>
 
+#include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
+#include "integrators/standard_sampling.h"
 
 namespace rr {
 
-enum class DirectStrategy : uint8_t { Light, Bsdf, Mis };
-
-struct DirectSettings {
-    DirectStrategy strategy = DirectStrategy::Mis;
-    int lightSamples = 1;
-    int bsdfSamples = 1;
-};
-
 class DirectLighting final : public SampleIntegrator {
   public:
-    explicit DirectLighting(const DirectSettings& settings) : settings_(settings) {}
+    DirectLighting(std::unique_ptr<DirectLightingEstimator> estimator, uint32_t bsdfSamples)
+        : estimator_(std::move(estimator)), bsdfSamples_(bsdfSamples) {}
 
     std::string name() const override { return "direct"; }
     nlohmann::json parameters() const override;
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;
     uint32_t decisionRepeats() const override {
-        return static_cast<uint32_t>(std::max(settings_.lightSamples, settings_.bsdfSamples));
+        return std::max({1u, estimator_->decisionRepeats(), bsdfSamples_});
     }
 
   private:
-    bool usesLights() const { return settings_.strategy != DirectStrategy::Bsdf; }
-    bool usesBsdf() const { return settings_.strategy != DirectStrategy::Light; }
-    // MIS weight of one strategy's sample given both densities (1 when not combining).
-    float weight(float nSelf, float pdfSelf, float nOther, float pdfOther) const;
-    // The infinite lights seen by a BSDF sample that escaped in direction `w`, weighted and
-    // divided by the number of BSDF samples like emission found on a surface.
-    Rgb escapedToInfiniteLights(const Scene& scene, const Vec3& w, const Vec3& reference,
-                                const BsdfSample& bs, float nBsdf, float nLight) const;
+    // The BSDF samples traced per pixel sample.
+    uint32_t tracedBsdfSamples() const {
+        return estimator_->foundEmission() == FoundEmission::Excluded ? 0 : bsdfSamples_;
+    }
+    // Adds each BSDF sample's emission at `hit` to *radiance, weighted against the estimator's
+    // light samples.
+    void addBsdfSamples(const StandardSampling& standard, const SurfaceHit& hit,
+                        const Material& material, const ShadingContext& ctx, const Frame& frame,
+                        const Vec3& wo, RayCounters& rays, Rgb* radiance) const;
 
-    DirectSettings settings_;
+    std::unique_ptr<DirectLightingEstimator> estimator_;
+    uint32_t bsdfSamples_;
 };
-
-const char* directStrategyName(DirectStrategy s);
 
 }  // namespace rr

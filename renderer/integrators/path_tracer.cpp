@@ -1,23 +1,26 @@
 #include "integrators/path_tracer.h"
 
+#include "integrators/light_sample_estimator.h"
 #include "integrators/path_walk.h"
 
 namespace rr {
 
+std::unique_ptr<PathTracer> PathTracer::withoutNextEventEstimation(const PathSettings& settings) {
+    return std::unique_ptr<PathTracer>(
+        new PathTracer("path", settings, std::make_unique<ScatteringOnlyEstimator>()));
+}
+
 nlohmann::json PathTracer::parameters() const {
-    return {{"type", name()}, {"max_depth", settings_.maxDepth}, {"rr_depth", settings_.rrDepth}};
+    nlohmann::json p = {
+        {"type", name()}, {"max_depth", settings_.maxDepth}, {"rr_depth", settings_.rrDepth}};
+    if (nee_->lightSamples() > 0) p["estimator"] = nee_->parameters();
+    return p;
 }
 
 Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                          RayCounters& rays) const {
-    const Ray cameraRay = generateCameraRay(scene.camera(), x, y, sample);
-    ++rays.camera;
     StandardSampling standard(scene, sample);
-    if (scene.features().media)
-        return PathWalk<true, StandardSampling>(scene, standard, rays, settings_, nee_, cameraRay)
-            .run();
-    return PathWalk<false, StandardSampling>(scene, standard, rays, settings_, nee_, cameraRay)
-        .run();
+    return tracePath(scene, standard, x, y, settings_, *nee_, rays);
 }
 
 }  // namespace rr

@@ -2,7 +2,9 @@
 //  - `path`: BSDF (and phase-function) sampling only; emission counts when a path hits an
 //    emitter.
 //  - `path_mis`: next-event estimation at every non-specular vertex, on surfaces and in media,
-//    plus BSDF or phase sampling, combined with Veach's power heuristic (Veach & Guibas 1995).
+//    by a direct-lighting estimator (direct_lighting_estimator.h; by default `mis`: light
+//    sampling and the path's BSDF or phase sampling combined with Veach's power heuristic,
+//    Veach & Guibas 1995).
 // Path length: `maxDepth` scattering events, on surfaces or in media (−1: unlimited up to a
 // safety cap), Russian roulette from `rrDepth` on with survival probability
 // min(1, max throughput · Πη²).
@@ -19,6 +21,10 @@
 // event. Scenes without media run a separately compiled walk that contains none of this.
 #pragma once
 
+#include <algorithm>
+#include <memory>
+
+#include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
 
 namespace rr {
@@ -34,18 +40,27 @@ class PathTracer final : public SampleIntegrator {
     // shell with total internal reflection) ever reach it.
     static constexpr int kDepthCap = 1000;
 
-    PathTracer(const PathSettings& settings, bool nextEventEstimation)
-        : settings_(settings), nee_(nextEventEstimation) {}
+    // `path`: next-event estimation by the `bsdf` estimator, which samples no light.
+    static std::unique_ptr<PathTracer> withoutNextEventEstimation(const PathSettings& settings);
+    // `path_mis`.
+    PathTracer(const PathSettings& settings, std::unique_ptr<DirectLightingEstimator> nee)
+        : PathTracer("path_mis", settings, std::move(nee)) {}
 
-    std::string name() const override { return nee_ ? "path_mis" : "path"; }
+    std::string name() const override { return name_; }
     nlohmann::json parameters() const override;
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;
-    bool supportsMedia() const override { return true; }
+
+    uint32_t decisionRepeats() const override { return std::max(1u, nee_->decisionRepeats()); }
 
   private:
+    PathTracer(std::string name, const PathSettings& settings,
+               std::unique_ptr<DirectLightingEstimator> nee)
+        : name_(std::move(name)), settings_(settings), nee_(std::move(nee)) {}
+
+    std::string name_;
     PathSettings settings_;
-    bool nee_;
+    std::unique_ptr<DirectLightingEstimator> nee_;
 };
 
 }  // namespace rr

@@ -1,97 +1,37 @@
 // One path of one pixel sample for the path tracers (path_tracer.h describes the estimator):
 // what the path carries from vertex to vertex, and the steps that extend it.
 //
-// Two compile-time choices keep every scene and technique from paying for what it does not use:
-//  - kMedia: without media no free flights, boundary checks or medium tracking exist, and
-//    shadow rays are plain occlusion queries;
-//  - Guide: how the path's decisions are made. StandardSampling (below) is plain importance
-//    sampling — light selection, light sampling, BSDF sampling — and compiles away entirely;
-//    a technique that steers decisions (TAIS's importance maps) supplies its own class with the
-//    same members, and the walk then uses its densities everywhere, in MIS weights included.
+// Three choices keep every scene and technique from paying for what it does not use:
+//  - kMedia (compile time): without media no free flights, boundary checks or medium tracking
+//    exist, and shadow rays are plain occlusion queries;
+//  - Guide (compile time): how the path's decisions are made (standard_sampling.h).
+//    StandardSampling compiles away; a technique that steers decisions supplies its own guide,
+//    and the walk then uses its densities everywhere, in MIS weights included;
+//  - the direct-lighting estimator (run time) that makes next-event estimation at every
+//    non-specular vertex, and which decides how the emission the path itself finds counts.
 //
-// The header is included only by the files that instantiate the walk; its functions are
-// templates defined here so the compiler can inline the steps into run().
+// The header is included only by the files that run the walk (through tracePath); its
+// functions are templates defined here so the compiler can inline the steps into run().
 #pragma once
 
 #include <algorithm>
 #include <limits>
 
-#include "integrators/integrator.h"
+#include "integrators/direct_lighting_estimator.h"
 #include "integrators/medium_tracking.h"
 #include "integrators/path_tracer.h"
-#include "scene/lights/area_light.h"
+#include "integrators/scattering_vertex.h"
+#include "integrators/standard_sampling.h"
 
 namespace rr {
 
-// Standard importance sampling for every decision of a path (what `path` and `path_mis` do).
-// `vertex` is the index of the scattering vertex that makes the decision (0: the first one
-// the camera ray reaches); `radiance` is what the path has gathered before the decision, so a
-// guide can credit a decision with what follows it.
-class StandardSampling {
-  public:
-    StandardSampling(const Scene& scene, const PixelSample& sample)
-        : scene_(scene), sample_(sample) {}
-
-    // The coordinate of the free flight of the segment that leads to `vertex` (the camera
-    // ray's for vertex 0), and the density of any warp applied to it.
-    float flightCoordinate(uint32_t vertex, const Rgb& /*radiance*/, float* warpPdf) {
-        *warpPdf = 1;
-        return sample_.get1D(Decision::MediumDistance, vertex);
-    }
-    // Next-event estimation's light and the point on it, with the density of the pair.
-    bool sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
-                     float* pdf, const Light** chosen) {
-        float selectPmf;
-        const Light* light = scene_.lightSelector().select(
-            sample_.get1D(Decision::LightSelect, vertex), reference, &selectPmf);
-        if (!light ||
-            !light->sample(reference, sample_.get2D(Decision::LightPoint, vertex), time, ls))
-            return false;
-        *pdf = selectPmf * ls->pdf;
-        *chosen = light;
-        return true;
-    }
-    // The light sample's contribution (already weighted) to the path's radiance.
-    void lightContribution(uint32_t /*vertex*/, const Rgb& /*contribution*/) {}
-    // Density with which sampleLight() at `vertex` picks `light` and its point `hit`.
-    float lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
-                   const SurfaceHit& hit) const {
-        (void)vertex;
-        return scene_.lightSelector().pmf(light, reference) * light.pdf(reference, hit);
-    }
-    // The same for an infinite light seen in direction `w`.
-    float lightPdf(uint32_t vertex, const Light& light, const Vec3& reference,
-                   const Vec3& w) const {
-        (void)vertex;
-        return scene_.lightSelector().pmf(light, reference) * light.directionPdf(w);
-    }
-    // The surface scattering decision (lobe, then direction) at `vertex`.
-    bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
-                    const Frame& /*frame*/, const Vec3& wo, const Rgb& /*radiance*/,
-                    BsdfSample* bs) {
-        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
-                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
-    }
-    // Density with which sampleBsdf() at `vertex` yields the local direction `wi`.
-    float bsdfPdf(uint32_t /*vertex*/, const Material& material, const ShadingContext& ctx,
-                  const Frame& /*frame*/, const Vec3& wo, const Vec3& wi) const {
-        return material.pdf(ctx, wo, wi);
-    }
-
-    const PixelSample& sample() const { return sample_; }
-
-  private:
-    const Scene& scene_;
-    const PixelSample& sample_;
-};
-
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 class PathWalk {
   public:
     // `weight`: the camera ray's sampling weight (1 unless a guide warped the camera's
     // decisions).
     PathWalk(const Scene& scene, Guide& guide, RayCounters& rays, const PathSettings& settings,
-             bool nee, const Ray& cameraRay, float weight = 1)
+             const DirectLightingEstimator& nee, const Ray& cameraRay, float weight = 1)
         : scene_(scene),
           guide_(guide),
           sample_(guide.sample()),
@@ -129,20 +69,24 @@ class PathWalk {
     // with density `pdf`; Russian roulette. False when the path ends.
     bool continuePath(const Ray& next, const Vec3& position, float pdf, bool specular);
 
-    // Next-event estimates, MIS-weighted against BSDF or phase sampling.
-    Rgb sampleLight(const SurfaceHit& hit, const Material& material, const ShadingContext& ctx,
-                    const Frame& frame, const Vec3& wo);
-    Rgb sampleLightInMedium(const Vec3& position, const Vec3& wo);
-    // What reaches the end of a shadow ray that starts in `medium`: the transmittance (0 or 1
-    // without media); `*survival` is the free-flight survival probability, for MIS.
-    Rgb visibility(const Ray& shadow, const Medium* medium, bool infinite, float* survival) const;
+    // Next-event estimation at the vertex `point`, if the estimator samples lights.
+    template <class Point>
+    void estimateDirectLight(Point&& point);
+    // Where a vertex's next-event estimate goes.
+    VertexOutput<Guide> output() { return {guide_, vertex(), throughput_, radiance_, rays_}; }
+    // The weight of emission the path finds against next-event estimation from the previous
+    // vertex, whose light sampling picks the same point with density lightPdf().
+    template <class LightPdf>
+    float foundEmissionWeight(const LightPdf& lightPdf) const {
+        return rr::foundEmissionWeight(nee_, inFull_, 1.0f, scatterPdf_, lightPdf);
+    }
 
     const Scene& scene_;
     Guide& guide_;
     const PixelSample& sample_;
     RayCounters& rays_;
     const int maxDepth_, rrDepth_;
-    const bool nee_;
+    const DirectLightingEstimator& nee_;
 
     Ray ray_;
     const Medium* medium_;  // the medium the ray travels through (nullptr: vacuum)
@@ -152,7 +96,8 @@ class PathWalk {
     // medium and back on leaving, which must not make Russian roulette kill paths inside glass
     // whose final weight is 1 (pbrt-v4's etaScale).
     float etaScale_ = 1;
-    bool countEmission_ = true;  // camera ray, or a specular bounce, or BSDF-only tracing
+    // The ray comes from the camera or a specular bounce: what it finds counts in full.
+    bool inFull_ = true;
     // Density of the last direction sample (BSDF or phase function) times the free-flight
     // survival probability of the media crossed since: the density with which this strategy
     // finds the light the path hits, for MIS.
@@ -164,7 +109,7 @@ class PathWalk {
     float flightBudget_ = 0;
 };
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 Rgb PathWalk<kMedia, Guide>::run() {
     for (;;) {
         SurfaceHit hit;
@@ -178,11 +123,11 @@ Rgb PathWalk<kMedia, Guide>::run() {
         }
         if (!found) {
             radiance_ +=
-                throughput_ * escapedRadiance(scene_, ray_.direction, countEmission_, scatterPdf_,
-                                              [this](const Light& light) {
-                                                  return guide_.lightPdf(previousVertex(), light,
-                                                                         previous_, ray_.direction);
-                                              });
+                throughput_ * escapedRadiance(scene_, ray_.direction, [this](const Light& l) {
+                    return foundEmissionWeight([&] {
+                        return guide_.lightPdf(previousVertex(), l, previous_, ray_.direction);
+                    });
+                });
             break;
         }
         if (hit.shape->areaLight()) radiance_ += emission(hit);
@@ -195,7 +140,7 @@ Rgb PathWalk<kMedia, Guide>::run() {
     return radiance_;
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 bool PathWalk<kMedia, Guide>::flyThroughMedium(float tMax, float* t) {
     if (flightBudget_ == 0) {
         float warpPdf;
@@ -213,17 +158,17 @@ bool PathWalk<kMedia, Guide>::flyThroughMedium(float tMax, float* t) {
     return false;
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 Rgb PathWalk<kMedia, Guide>::emission(const SurfaceHit& hit) const {
     const AreaLight* light = hit.shape->areaLight();
     const Rgb le = light->emitted(hit.geometricNormal, -ray_.direction);
     if (le.isBlack()) return le;
-    const float lightPdf =
-        countEmission_ ? 0.0f : guide_.lightPdf(previousVertex(), *light, previous_, hit);
-    return throughput_ * le * emissionMisWeight(countEmission_, scatterPdf_, lightPdf);
+    return throughput_ * le * foundEmissionWeight([&] {
+               return guide_.lightPdf(previousVertex(), *light, previous_, hit);
+           });
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 bool PathWalk<kMedia, Guide>::passThroughBoundary(const SurfaceHit& hit) {
     if (++crossings_ > kMaxBoundaryCrossings) return false;
     medium_ = mediumOnSide(scene_, hit, ray_.direction, medium_);
@@ -232,7 +177,7 @@ bool PathWalk<kMedia, Guide>::passThroughBoundary(const SurfaceHit& hit) {
     return true;
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 bool PathWalk<kMedia, Guide>::scatterAtSurface(const SurfaceHit& hit) {
     const Material* material = hit.shape->material();
     if (depth_ >= maxDepth_ || !material) return false;
@@ -240,8 +185,9 @@ bool PathWalk<kMedia, Guide>::scatterAtSurface(const SurfaceHit& hit) {
     const Frame frame = hit.shadingFrame();
     const Vec3 wo = frame.toLocal(-ray_.direction);
     const ShadingContext ctx{hit.uv, hit.position};
-    if (nee_ && material->hasNonSpecular())
-        radiance_ += throughput_ * sampleLight(hit, *material, ctx, frame, wo);
+    if (material->hasNonSpecular())
+        estimateDirectLight(
+            SurfaceVertex<kMedia, Guide>(output(), hit, *material, ctx, frame, wo, medium_, 1.0f));
 
     BsdfSample bs;
     if (!guide_.sampleBsdf(vertex(), *material, ctx, frame, wo, radiance_, &bs)) return false;
@@ -253,25 +199,24 @@ bool PathWalk<kMedia, Guide>::scatterAtSurface(const SurfaceHit& hit) {
     return continuePath(hit.spawn(wi), hit.position, bs.pdf, bs.isSpecular());
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 bool PathWalk<kMedia, Guide>::scatterInMedium(float t) {
     if (depth_ >= maxDepth_ || throughput_.isBlack()) return false;
     const Vec3 position = ray_.origin + ray_.direction * t;
     const Vec3 wo = -ray_.direction;
-    if (nee_) radiance_ += throughput_ * sampleLightInMedium(position, wo);
+    estimateDirectLight(MediumVertex<Guide>(output(), position, ray_.time, wo, *medium_));
     // Exact sampling: the weight p/pdf is 1 and the throughput is unchanged.
     Vec3 wi;
-    const float pdf =
-        medium_->phase().sample(wo, sample_.get2D(Decision::BsdfDirection, vertex()), &wi);
+    const float pdf = guide_.samplePhase(vertex(), medium_->phase(), wo, &wi);
     if (!(pdf > 0)) return false;
     return continuePath(Ray{position, wi, kInfinity, ray_.time}, position, pdf,
                         /*specular=*/false);
 }
 
-template <bool kMedia, class Guide>
+template <bool kMedia, PathGuide Guide>
 bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const Vec3& position, float pdf,
                                            bool specular) {
-    countEmission_ = !nee_ || specular;
+    inFull_ = specular;
     scatterPdf_ = pdf;
     previous_ = position;
     ray_ = next;
@@ -286,68 +231,23 @@ bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const Vec3& position
     return true;
 }
 
-template <bool kMedia, class Guide>
-Rgb PathWalk<kMedia, Guide>::sampleLight(const SurfaceHit& hit, const Material& material,
-                                         const ShadingContext& ctx, const Frame& frame,
-                                         const Vec3& wo) {
-    LightSample ls;
-    float lightPdf;
-    const Light* light;
-    if (!guide_.sampleLight(vertex(), hit.position, hit.time, &ls, &lightPdf, &light))
-        return Rgb(0.0f);
-    const Vec3 wi = frame.toLocal(ls.direction);
-    const Rgb f = material.eval(ctx, wo, wi);
-    if (f.isBlack()) return Rgb(0.0f);
-    float survival;
-    const Medium* medium = kMedia ? mediumOnSide(scene_, hit, ls.direction, medium_) : nullptr;
-    const Rgb tr = visibility(hit.spawnTo(ls.position, ls.normal, ls.errorScale), medium,
-                              light->isInfinite(), &survival);
-    if (tr.isBlack()) return Rgb(0.0f);
-    const float weight =
-        ls.isDelta
-            ? 1.0f
-            : powerHeuristic(1, lightPdf, 1,
-                             guide_.bsdfPdf(vertex(), material, ctx, frame, wo, wi) * survival);
-    const Rgb contribution = f * ls.radiance * tr * (weight / lightPdf);
-    guide_.lightContribution(vertex(), throughput_ * contribution);
-    return contribution;
+template <bool kMedia, PathGuide Guide>
+template <class Point>
+void PathWalk<kMedia, Guide>::estimateDirectLight(Point&& point) {
+    if (nee_.lightSamples() > 0) nee_.estimate(point);
 }
 
-template <bool kMedia, class Guide>
-Rgb PathWalk<kMedia, Guide>::sampleLightInMedium(const Vec3& position, const Vec3& wo) {
-    LightSample ls;
-    float lightPdf;
-    const Light* light;
-    if (!guide_.sampleLight(vertex(), position, ray_.time, &ls, &lightPdf, &light))
-        return Rgb(0.0f);
-    const PhaseFunction& phase = medium_->phase();
-    const float p = phase.eval(wo, ls.direction);
-    if (!(p > 0)) return Rgb(0.0f);
-    // A medium point lies on no surface: only the light's end of the shadow ray is lifted.
-    const Vec3 target =
-        offsetRayOrigin(ls.position, ls.normal, position - ls.position, ls.errorScale);
-    const float distance = length(target - position);
-    const Ray shadow{position, (target - position) / distance, distance, ray_.time};
-    float survival;
-    const Rgb tr = visibility(shadow, medium_, light->isInfinite(), &survival);
-    if (tr.isBlack()) return Rgb(0.0f);
-    const float weight =
-        ls.isDelta ? 1.0f : powerHeuristic(1, lightPdf, 1, phase.pdf(wo, ls.direction) * survival);
-    const Rgb contribution = ls.radiance * tr * (p * weight / lightPdf);
-    guide_.lightContribution(vertex(), throughput_ * contribution);
-    return contribution;
-}
-
-template <bool kMedia, class Guide>
-Rgb PathWalk<kMedia, Guide>::visibility(const Ray& shadow, const Medium* medium, bool infinite,
-                                        float* survival) const {
-    if constexpr (kMedia) {
-        return shadowTransmittance(scene_, shadow, medium, infinite, survival, rays_);
-    } else {
-        *survival = 1;
-        ++rays_.shadow;
-        return Rgb(scene_.occluded(shadow) ? 0.0f : 1.0f);
-    }
+// One path of pixel (x, y), its camera ray from `guide`, through the walk compiled with or
+// without media as the scene needs.
+template <PathGuide Guide>
+Rgb tracePath(const Scene& scene, Guide& guide, int x, int y, const PathSettings& settings,
+              const DirectLightingEstimator& nee, RayCounters& rays) {
+    float weight;
+    const Ray ray = guide.cameraRay(x, y, &weight);
+    ++rays.camera;
+    if (scene.features().media)
+        return PathWalk<true, Guide>(scene, guide, rays, settings, nee, ray, weight).run();
+    return PathWalk<false, Guide>(scene, guide, rays, settings, nee, ray, weight).run();
 }
 
 }  // namespace rr

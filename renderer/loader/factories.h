@@ -7,10 +7,9 @@
 #include <string>
 
 #include "config/json_reader.h"
-#include "integrators/integrator.h"
-#include "integrators/path_tracer.h"
 #include "loader/asset_resolver.h"
 #include "math/transform.h"
+#include "render/technique_registry.h"
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/medium.h"
@@ -38,7 +37,8 @@ std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
 // Environment maps are found through `assets`.
 std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets);
 
-std::unique_ptr<Integrator> makeIntegrator(ObjectReader& json, const PathSettings& path);
+// Every integrator and direct-lighting estimator type: the core ones and the techniques'.
+const TechniqueRegistry& techniqueRegistry();
 
 // The "transform" object: scale, then rotations in order, then translation; or a 4×4 matrix.
 Transform readTransform(ObjectReader& parent, const std::string& key);

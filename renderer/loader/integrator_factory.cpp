@@ -1,36 +1,82 @@
 #include "integrators/direct_lighting.h"
+#include "integrators/light_sample_estimator.h"
 #include "integrators/path_tracer.h"
 #include "loader/factories.h"
-#include "loader/type_table.h"
-#include "techniques/tais/tais_integrator.h"
 
 namespace rr {
 
-std::unique_ptr<Integrator> makeIntegrator(ObjectReader& json, const PathSettings& path) {
-    static const TypeTable<Integrator, const PathSettings&> table{
-        {"path",
-         [](ObjectReader&, const PathSettings& p) {
-             return std::make_unique<PathTracer>(p, /*nextEventEstimation=*/false);
-         }},
-        {"path_mis",
-         [](ObjectReader&, const PathSettings& p) {
-             return std::make_unique<PathTracer>(p, /*nextEventEstimation=*/true);
-         }},
-        {"direct",
-         [](ObjectReader& j, const PathSettings&) {
-             DirectSettings s;
-             const std::string strategy = j.getChoice("strategy", {"mis", "light", "bsdf"}, "mis");
-             s.strategy = strategy == "light"  ? DirectStrategy::Light
-                          : strategy == "bsdf" ? DirectStrategy::Bsdf
-                                               : DirectStrategy::Mis;
-             s.lightSamples =
-                 static_cast<int>(j.getInt("light_samples", 1, Range::closed(1, 1024)));
-             s.bsdfSamples = static_cast<int>(j.getInt("bsdf_samples", 1, Range::closed(1, 1024)));
-             return std::make_unique<DirectLighting>(s);
-         }},
-        {"tais", tais::makeTaisIntegrator},
-    };
-    return buildByType(json, "integrator", table, path);
+namespace {
+
+// "light_samples": light samples per estimate.
+uint32_t readLightSamples(ObjectReader& json) {
+    return static_cast<uint32_t>(json.getInt("light_samples", 1, Range::closed(1, 1024)));
+}
+
+// `light`, `mis` or `bsdf` (which samples no light, whatever lightSamples says).
+std::unique_ptr<DirectLightingEstimator> makeCoreEstimator(const std::string& strategy,
+                                                           uint32_t lightSamples) {
+    if (strategy == "bsdf") return std::make_unique<ScatteringOnlyEstimator>();
+    return std::make_unique<LightSampleEstimator>(lightSamples, strategy == "mis");
+}
+
+// An integrator's "estimator" object (default `mis` with one light sample).
+std::unique_ptr<DirectLightingEstimator> readEstimator(ObjectReader& json,
+                                                       const TechniqueRegistry& registry) {
+    const Json* e = json.rawOptional("estimator");
+    if (!e) return std::make_unique<LightSampleEstimator>(1, true);
+    ObjectReader ej(*e, json.pointerTo("estimator"));
+    return registry.makeEstimator(ej);
+}
+
+// `direct`: "strategy" (with "light_samples") names a core estimator; "estimator" any one.
+BuiltIntegrator makeDirect(ObjectReader& json, const IntegratorContext& context) {
+    std::unique_ptr<DirectLightingEstimator> estimator;
+    if (json.has("estimator")) {
+        for (const char* key : {"strategy", "light_samples"})
+            if (json.has(key))
+                json.fail(key,
+                          "give either \"strategy\" (and \"light_samples\") or "
+                          "\"estimator\", not both");
+        estimator = readEstimator(json, context.registry);
+    } else {
+        const std::string strategy = json.getChoice("strategy", {"mis", "light", "bsdf"}, "mis");
+        estimator = makeCoreEstimator(strategy, readLightSamples(json));
+    }
+    const auto bsdfSamples =
+        static_cast<uint32_t>(json.getInt("bsdf_samples", 1, Range::closed(1, 1024)));
+    return withUniformPasses(std::make_unique<DirectLighting>(std::move(estimator), bsdfSamples));
+}
+
+TechniqueRegistry coreRegistry() {
+    TechniqueRegistry r;
+    r.addIntegrator(
+        "path",
+        [](ObjectReader&, const IntegratorContext& c) {
+            return withUniformPasses(PathTracer::withoutNextEventEstimation(c.path));
+        },
+        /*rendersMedia=*/true);
+    r.addIntegrator(
+        "path_mis",
+        [](ObjectReader& json, const IntegratorContext& c) {
+            return withUniformPasses(
+                std::make_unique<PathTracer>(c.path, readEstimator(json, c.registry)));
+        },
+        /*rendersMedia=*/true);
+    r.addIntegrator("direct", makeDirect, /*rendersMedia=*/false);
+    for (const char* strategy : {"light", "bsdf", "mis"})
+        r.addEstimator(strategy, [strategy](ObjectReader& json) {
+            return makeCoreEstimator(strategy,
+                                     std::string(strategy) == "bsdf" ? 1 : readLightSamples(json));
+        });
+    registerTechniques(r);
+    return r;
+}
+
+}  // namespace
+
+const TechniqueRegistry& techniqueRegistry() {
+    static const TechniqueRegistry registry = coreRegistry();
+    return registry;
 }
 
 }  // namespace rr

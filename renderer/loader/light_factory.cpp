@@ -1,9 +1,9 @@
 #include <cmath>
 
+#include "config/type_table.h"
 #include "io/rgb_image_io.h"
 #include "loader/asset_files.h"
 #include "loader/factories.h"
-#include "loader/type_table.h"
 #include "scene/lights/constant_environment.h"
 #include "scene/lights/environment_map.h"
 #include "scene/lights/point_light.h"

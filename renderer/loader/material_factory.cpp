@@ -1,8 +1,8 @@
 #include <cstdio>
 
+#include "config/type_table.h"
 #include "loader/factories.h"
 #include "loader/texture_factory.h"
-#include "loader/type_table.h"
 #include "scene/materials/ashikhmin_shirley.h"
 #include "scene/materials/blinn.h"
 #include "scene/materials/checker.h"

@@ -1,5 +1,5 @@
+#include "config/type_table.h"
 #include "loader/factories.h"
-#include "loader/type_table.h"
 #include "scene/media/henyey_greenstein.h"
 #include "scene/media/homogeneous_medium.h"
 #include "scene/media/isotropic_phase.h"

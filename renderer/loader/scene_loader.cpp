@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "config/type_table.h"
 #include "loader/camera_reader.h"
 #include "loader/factories.h"
 #include "loader/material_catalog.h"
@@ -77,26 +78,29 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         }
     }
 
-    std::unique_ptr<Integrator> integrator;
+    BuiltIntegrator built;
     {
         static const Json defaultIntegrator = {{"type", "path_mis"}};
         const Json* ij = root.rawOptional("integrator");
         ObjectReader reader(ij ? *ij : defaultIntegrator, root.pointerTo("integrator"));
-        integrator = makeIntegrator(reader, path);
+        built = techniqueRegistry().makeIntegrator(reader, path);
     }
-    checkStructuredSampleCount(render, *integrator, root.pointerTo("render") + "/spp");
-    if (!mediumPointer.empty() && !integrator->supportsMedia())
-        throw ConfigError(mediumPointer, "the " + integrator->name() +
+    const Integrator& integrator = *built.integrator;
+    checkStructuredSampleCount(render, integrator, root.pointerTo("render") + "/spp");
+    if (!mediumPointer.empty() && !techniqueRegistry().rendersMedia(integrator.name()))
+        throw ConfigError(mediumPointer, "the " + integrator.name() +
                                              " integrator does not render participating media; "
-                                             "use \"path\" or \"path_mis\"");
+                                             "use one that does: " +
+                                             quotedNames(techniqueRegistry().mediaIntegrators()));
     root.finish();
 
     LoadedScene loaded;
     loaded.scene = builder.build(render.lightSelection);
     if (loaded.scene->lights().empty())
         throw ConfigError("", "the scene has no light: add an emitter shape or a light");
-    integrator->prepare(*loaded.scene);
-    loaded.integrator = std::move(integrator);
+    built.integrator->prepare(*loaded.scene);
+    loaded.integrator = std::move(built.integrator);
+    loaded.schedule = std::move(built.schedule);
     loaded.render = render;
     return loaded;
 }

@@ -11,6 +11,7 @@
 #include "integrators/integrator.h"
 #include "loader/asset_resolver.h"
 #include "loader/render_settings_reader.h"
+#include "render/technique_registry.h"
 #include "scene/scene.h"
 
 namespace rr {
@@ -18,6 +19,7 @@ namespace rr {
 struct LoadedScene {
     std::unique_ptr<Scene> scene;
     std::unique_ptr<Integrator> integrator;
+    ScheduleMaker schedule;  // how the integrator's samples are scheduled
     RenderSettings render;
 };
 

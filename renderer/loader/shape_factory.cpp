@@ -1,9 +1,9 @@
 #include <cmath>
 
+#include "config/type_table.h"
 #include "io/mesh_io.h"
 #include "loader/asset_files.h"
 #include "loader/factories.h"
-#include "loader/type_table.h"
 #include "scene/shapes/disk.h"
 #include "scene/shapes/polygon.h"
 #include "scene/shapes/quad.h"

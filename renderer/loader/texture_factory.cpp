@@ -3,8 +3,8 @@
 #include <cmath>
 #include <optional>
 
+#include "config/type_table.h"
 #include "loader/asset_files.h"
-#include "loader/type_table.h"
 #include "scene/textures/checker.h"
 #include "scene/textures/gradient.h"
 #include "scene/textures/image.h"

@@ -1,15 +1,15 @@
-// The render loop: progressive passes over 16×16 tiles in parallel (oneTBB). A pass adds the
-// same range of sample indices to every pixel, so every pixel always holds the same number of
-// samples and an image can be saved after any pass. Passes grow to about a second each; with
-// a time limit, a pass starts only if it is predicted to finish in time.
+// The render loop: asks a schedule (render_schedule.h) for rounds and runs each round's units in
+// parallel on oneTBB, each unit's pixels in order through the unit's pixel hook, adding the
+// kept samples to the film. Each pixel is only ever written by one unit per round, in sample
+// order, so the film is bit-identical for any thread count.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
 
-#include "integrators/integrator.h"
 #include "render/film.h"
+#include "render/render_schedule.h"
 #include "sampling/sampler.h"
 
 namespace rr {
@@ -19,13 +19,13 @@ namespace rr {
 inline constexpr uint32_t kMaxSpp = 1u << 24;
 
 struct RenderOptions {
-    uint32_t spp = 16;     // target; with a time limit, an upper bound (0: none)
-    double timeLimit = 0;  // seconds; 0: render exactly spp
+    double timeLimit = 0;  // seconds (for progress; the schedule enforces it); 0: none
     uint32_t seed = 0;
     int threads = 0;  // 0: all cores
     SamplerType sampler = SamplerType::Independent;
     uint32_t samplerSetSize = 16;               // samples stratified together (spp when known)
-    const std::atomic<bool>* cancel = nullptr;  // checked between passes
+    const std::atomic<bool>* cancel = nullptr;  // checked between rounds (and units, where the
+                                                // round allows it)
 };
 
 struct RenderProgress {
@@ -33,20 +33,21 @@ struct RenderProgress {
     uint64_t samplesPlanned = 0;  // 0 when only time bounds the render
     double elapsed = 0;
     double timeLimit = 0;
-    uint32_t sppDone = 0;
+    uint32_t sppDone = 0;  // samples per pixel of the complete rounds
 };
 
 struct RenderStats {
-    uint32_t spp = 0;  // samples per pixel reached
+    uint32_t spp = 0;       // samples per pixel reached (their mean, for a variable allocation)
+    bool complete = false;  // the film holds a complete image (at least one whole round)
     double seconds = 0;
     RayCounters rays;
-    uint64_t nonFiniteSamples = 0;  // dropped (and reported): a bug indicator, never silent
+    uint64_t nonFiniteSamples = 0;  // replaced by zero (and reported): a bug indicator
     bool interrupted = false;
 };
 
 using ProgressCallback = std::function<void(const RenderProgress&)>;
 
-RenderStats render(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
-                   Film& film, const ProgressCallback& progress = {});
+RenderStats render(RenderSchedule& schedule, const RenderOptions& options, Film& film,
+                   const ProgressCallback& progress = {});
 
 }  // namespace rr

@@ -22,12 +22,13 @@ LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string
 TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, int threads) {
     TestRender r{Film(scene.render.width, scene.render.height), {}};
     RenderOptions options;
-    options.spp = spp;
     options.seed = seed;
     options.threads = threads;
     options.sampler = scene.render.sampler;
     options.samplerSetSize = spp;
-    r.stats = render(*scene.scene, *scene.integrator, options, r.film);
+    const std::unique_ptr<RenderSchedule> schedule = scene.schedule(
+        ScheduleInputs{*scene.scene, scene.render.width, scene.render.height, spp, 0});
+    r.stats = render(*schedule, options, r.film);
     return r;
 }
 

@@ -28,31 +28,23 @@ void MapGuide::record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amoun
 }
 
 Ray MapGuide::cameraRay(int x, int y, float* weight) {
-    const Camera& camera = scene_.camera();
-    const Vec2 film = sample().get2D(Decision::FilmPosition);
+    const Camera& camera = scene().camera();
+    CameraSample c = drawCameraSample(camera, sample());
     float w = 1;
-    Vec2 lens(0.5f, 0.5f);
-    if (camera.isThinLens()) {
-        lens = sample().get2D(Decision::Lens);
-        if (maps_.lens) {
-            float p;
-            lens = maps_.lens->warp(lens, &p);
-            w /= p;
-            record(MapKind::Lens, 0, lens, Rgb(0.0f));
-        }
+    if (camera.isThinLens() && maps_.lens) {
+        float p;
+        c.lens = maps_.lens->warp(c.lens, &p);
+        w /= p;
+        record(MapKind::Lens, 0, c.lens, Rgb(0.0f));
     }
-    float time = 0;
-    if (camera.hasShutterInterval()) {
-        time = sample().get1D(Decision::Time);
-        if (maps_.time) {
-            float p;
-            time = maps_.time->warp(time, &p);
-            w /= p;
-            record(MapKind::Time, 0, Vec2(time, 0.0f), Rgb(0.0f));
-        }
+    if (camera.hasShutterInterval() && maps_.time) {
+        float p;
+        c.time = maps_.time->warp(c.time, &p);
+        w /= p;
+        record(MapKind::Time, 0, Vec2(c.time, 0.0f), Rgb(0.0f));
     }
     *weight = w;
-    return camera.generateRay(Vec2(float(x) + film.x, float(y) + film.y), lens, time);
+    return rr::cameraRay(camera, x, y, c);
 }
 
 float MapGuide::flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf) {
@@ -67,7 +59,7 @@ float MapGuide::flightCoordinate(uint32_t vertex, const Rgb& radiance, float* wa
 }
 
 float MapGuide::selectionPmf(const Light& light, const Vec3& reference) const {
-    const float standard = scene_.lightSelector().pmf(light, reference);
+    const float standard = scene().lightSelector().pmf(light, reference);
     if (!maps_.lightSelection) return standard;
     const float a = settings_.alpha;
     return a * maps_.lightSelection->probability(light.index()) + (1 - a) * standard;
@@ -80,20 +72,21 @@ float MapGuide::pointOnLightPdf(const Light& light, const Vec3& reference, const
     return maps_.pointOnLight->pdf(u);
 }
 
-bool MapGuide::sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
-                           float* pdf, const Light** chosen) {
+bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
+                           float time, LightSample* ls, float* pdf, const Light** chosen) {
     if (!guidesLights(vertex))
-        return standard_.sampleLight(vertex, reference, time, ls, pdf, chosen);
-    const LightSelector& selector = scene_.lightSelector();
-    const float uSelect = sample().get1D(Decision::LightSelect, vertex);
-    Vec2 uPoint = sample().get2D(Decision::LightPoint, vertex);
+        return StandardSampling::sampleLight(vertex, repeat, count, reference, time, ls, pdf,
+                                             chosen);
+    const LightSelector& selector = scene().lightSelector();
+    const float uSelect = sample().get1D({Decision::LightSelect, vertex, repeat, count});
+    Vec2 uPoint = sample().get2D({Decision::LightPoint, vertex, repeat, count});
     const Light* light;
     float selectPmf;
     if (maps_.lightSelection) {
         // Eq. (2): the map with probability α, the scene's selector otherwise.
         const float a = settings_.alpha;
         float unused;
-        light = uSelect < a ? scene_.lights()[size_t(maps_.lightSelection->sampleCell(
+        light = uSelect < a ? scene().lights()[size_t(maps_.lightSelection->sampleCell(
                                   rescale(uSelect, 0, a), &unused))]
                             : selector.select(rescale(uSelect, a, 1), reference, &unused);
         if (!light) return false;
@@ -124,7 +117,7 @@ void MapGuide::lightContribution(uint32_t vertex, const Rgb& contribution) {
 
 float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
                          const SurfaceHit& hit) const {
-    if (!guidesLights(vertex)) return standard_.lightPdf(vertex, light, reference, hit);
+    if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, hit);
     const Vec3 direction = normalize(hit.position - reference);
     return selectionPmf(light, reference) * light.pdf(reference, hit) *
            pointOnLightPdf(light, reference, direction, hit.position);
@@ -132,7 +125,7 @@ float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& re
 
 float MapGuide::lightPdf(uint32_t vertex, const Light& light, const Vec3& reference,
                          const Vec3& w) const {
-    if (!guidesLights(vertex)) return standard_.lightPdf(vertex, light, reference, w);
+    if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, w);
     return selectionPmf(light, reference) * light.directionPdf(w) *
            pointOnLightPdf(light, reference, w, reference + w);
 }
@@ -145,7 +138,7 @@ bool MapGuide::sampleBsdf(uint32_t vertex, const Material& material, const Shadi
         return sampleBifurcation(vertex, material, ctx, wo, radiance, bs);
     const InvertedMap2D* map = (lobes & kSpecular) ? nullptr : directionMap();
     if (!(lobes & kSpecular)) ++bounce_;
-    if (!map) return standard_.sampleBsdf(vertex, material, ctx, frame, wo, radiance, bs);
+    if (!map) return StandardSampling::sampleBsdf(vertex, material, ctx, frame, wo, radiance, bs);
     return sampleDirection(vertex, *map, material, ctx, frame, wo, radiance, bs);
 }
 

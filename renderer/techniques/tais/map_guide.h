@@ -1,6 +1,7 @@
 // The decisions of one TAIS path sample (Cline et al. 2008, Algorithm 1, lines 6–17), as a
-// Guide for the path walk (integrators/path_walk.h; StandardSampling there documents each
-// member). Which decision each map steers:
+// guide for the path walk: StandardSampling (integrators/standard_sampling.h, which documents
+// each member) with the members whose decisions a map steers hidden. Which decision each map
+// steers:
 //  - time and lens: the camera's; scatter distance: the camera ray's free flight (vertex 0);
 //  - light selection and point on light: next-event estimation at the first scattering vertex
 //    (vertex 0), the one a pixel's neighbours share most;
@@ -21,19 +22,18 @@
 #include <array>
 #include <span>
 
-#include "integrators/path_walk.h"
+#include "integrators/standard_sampling.h"
 #include "techniques/tais/pixel_maps.h"
 #include "techniques/tais/tais_settings.h"
 
 namespace rr::tais {
 
-class MapGuide {
+class MapGuide : public StandardSampling {
   public:
     // `invertible[i]`: whether scene light i can invert its samples.
     MapGuide(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
              const TaisSettings& settings, std::span<const char> invertible)
-        : scene_(scene),
-          standard_(scene, sample),
+        : StandardSampling(scene, sample),
           maps_(maps),
           settings_(settings),
           invertible_(invertible) {}
@@ -43,8 +43,8 @@ class MapGuide {
     Ray cameraRay(int x, int y, float* weight);
 
     float flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf);
-    bool sampleLight(uint32_t vertex, const Vec3& reference, float time, LightSample* ls,
-                     float* pdf, const Light** chosen);
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
+                     float time, LightSample* ls, float* pdf, const Light** chosen);
     void lightContribution(uint32_t vertex, const Rgb& contribution);
     float lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
                    const SurfaceHit& hit) const;
@@ -53,7 +53,6 @@ class MapGuide {
                     const Frame& frame, const Vec3& wo, const Rgb& radiance, BsdfSample* bs);
     float bsdfPdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
                   const Frame& frame, const Vec3& wo, const Vec3& wi) const;
-    const PixelSample& sample() const { return standard_.sample(); }
 
     // Algorithm 1, line 19: the sample's value L(x) added to the temporary maps at the
     // coordinates of its decisions, credited as settings.credit says.
@@ -96,8 +95,6 @@ class MapGuide {
                          const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
                          const Rgb& radiance, BsdfSample* bs);
 
-    const Scene& scene_;
-    StandardSampling standard_;  // the decisions no map steers
     const PixelMaps& maps_;
     const TaisSettings& settings_;
     std::span<const char> invertible_;

@@ -4,21 +4,13 @@ namespace rr::tais {
 
 namespace {
 
-// The row's scan direction: +1 for the band's even rows, −1 for its odd ones.
+// The row's scan direction (render/scan_bands.h): +1 for the band's even rows, −1 for its odd
+// ones.
 int direction(int rowInBand) {
     return rowInBand % 2 == 0 ? 1 : -1;
 }
 
 }  // namespace
-
-std::vector<PixelCoord> serpentineOrder(int width, int y0, int y1) {
-    std::vector<PixelCoord> order;
-    order.reserve(size_t(width) * (y1 - y0));
-    for (int y = y0; y < y1; ++y)
-        for (int i = 0; i < width; ++i)
-            order.push_back({direction(y - y0) > 0 ? i : width - 1 - i, y});
-    return order;
-}
 
 std::vector<PixelCoord> renderedNeighbours(int x, int rowInBand, int width) {
     std::vector<PixelCoord> neighbours;

@@ -1,14 +1,12 @@
-// TAIS's scan order and importance propagation (Cline et al. 2008, §3.3, fig. 3): pixels are
-// rendered row by row, alternating direction ("we scan back and forth to allow importance to
-// propagate both left and right, as well as down"), and each pixel starts from the average of
-// the maps of its already-rendered neighbours, of which only two rows are kept in memory.
+// TAIS's importance propagation (Cline et al. 2008, §3.3, fig. 3). Pixels are rendered in the
+// serpentine order of render/scan_bands.h, and each pixel starts from the average of the maps
+// of its already-rendered neighbours, of which only two rows are kept in memory.
 //
 // The paper's figure 3 is not in its text; we read its seven neighbours as the five pixels
 // x−2 … x+2 of the row above and the two pixels before this one in the current row's scan
-// direction (all already rendered under a serpentine scan), clipped at the image edges.
-//
-// A band of rows is scanned by one thread from its first row on, with no maps from the band
-// above: the image is then the same for any number of threads when bands are fixed.
+// direction (all already rendered under a serpentine scan), clipped at the image edges. A band
+// starts on the warm-up rows it scans from the band above (ScanBands), so its first row of kept
+// pixels already has neighbours above it.
 #pragma once
 
 #include <cstddef>
@@ -21,10 +19,6 @@ struct PixelCoord {
     int x = 0, y = 0;
     bool operator==(const PixelCoord&) const = default;
 };
-
-// Rows [y0, y1) of an image `width` pixels wide in serpentine order: the band's first row
-// left to right, the next right to left, and so on.
-std::vector<PixelCoord> serpentineOrder(int width, int y0, int y1);
 
 // The already-rendered neighbours of pixel x in row `rowInBand` of a band (see above).
 std::vector<PixelCoord> renderedNeighbours(int x, int rowInBand, int width);

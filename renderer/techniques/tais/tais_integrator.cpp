@@ -4,10 +4,9 @@
 
 #include "config/config_error.h"
 #include "config/json_reader.h"
-#include "integrators/path_walk.h"
-#include "techniques/tais/contribution_filter.h"
+#include "render/scan_bands.h"
 #include "techniques/tais/map_guide.h"
-#include "techniques/tais/scan.h"
+#include "techniques/tais/tais_pixels.h"
 
 namespace rr::tais {
 
@@ -18,22 +17,6 @@ std::string mapList(const TaisSettings& s) {
     for (int k = 0; k < kMapKinds; ++k)
         if (s.enabled[k]) list += (list.empty() ? "" : ", ") + std::string(mapName(MapKind(k)));
     return list.empty() ? "none" : list;
-}
-
-// Renders one pixel's samples with its maps fixed (Algorithm 1, lines 3–20).
-template <bool kMedia>
-Rgb renderSample(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
-                 const TaisSettings& settings, std::span<const char> invertible, int x, int y,
-                 TemporaryMaps& temporary, RayCounters& rays) {
-    MapGuide guide(scene, sample, maps, settings, invertible);
-    float weight;
-    const Ray ray = guide.cameraRay(x, y, &weight);
-    ++rays.camera;
-    const Rgb value = PathWalk<kMedia, MapGuide>(scene, guide, rays, settings.path,
-                                                 /*nee=*/true, ray, weight)
-                          .run();
-    if (value.isFinite()) guide.splat(value, temporary);
-    return value;
 }
 
 }  // namespace
@@ -123,57 +106,18 @@ void TaisIntegrator::prepare(const Scene& scene) {
         invertible_.push_back(light->canInvertSample() ? 1 : 0);
 }
 
-BandIntegrator::BandResult TaisIntegrator::renderBand(const Scene& scene, const Sampler& sampler,
-                                                      int y0, int y1, uint32_t spp,
-                                                      Film& film) const {
-    const int width = film.width();
-    const int lights = static_cast<int>(scene.lights().size());
-    MapRows<PixelMaps> rows(width, PixelMaps::uniform(settings_, lights));
-    TemporaryMaps temporary(settings_, lights);
-    std::vector<Rgb> values(spp);
-    PixelMaps maps = PixelMaps::uniform(settings_, lights);
-    BandResult result;
-    // Warm-up rows (from the band above) teach the maps and are not kept.
-    const int start = y0 - std::min(settings_.bandWarmupRows, y0);
-    int row = 0;
-    for (const PixelCoord& p : serpentineOrder(width, start, y1)) {
-        if (p.y - start != row) {
-            rows.nextRow();
-            row = p.y - start;
-        }
-        const bool warmup = p.y < y0;
-        const uint32_t firstSample = warmup ? spp : 0;
-        // Fig. 3: the neighbours' average, normalised (which makes it independent of how many
-        // were averaged) so that it and this pixel's own samples, normalised too, weigh
-        // equally in what the pixel passes on.
-        rows.neighbourSum(p.x, row, &maps);
-        maps.normalize();
-        temporary.clear();
-        const uint32_t pixel = uint32_t(p.y) * uint32_t(width) + uint32_t(p.x);
-        for (uint32_t s = 0; s < spp; ++s) {
-            const PixelSample sample = sampler.at(pixel, firstSample + s);
-            Rgb v = scene.features().media
-                        ? renderSample<true>(scene, sample, maps, settings_, invertible_, p.x, p.y,
-                                             temporary, result.rays)
-                        : renderSample<false>(scene, sample, maps, settings_, invertible_, p.x, p.y,
-                                              temporary, result.rays);
-            if (!v.isFinite()) {
-                ++result.nonFiniteSamples;
-                v = Rgb(0.0f);
-            }
-            values[s] = v;
-        }
-        if (settings_.contributionFilter) filterMaximumContribution(values);  // line 21
-        if (!warmup)
-            for (const Rgb& v : values)
-                film.add(p.x, p.y, v);
-        temporary.addFinishedTo(maps, settings_.worldFloorShare);  // lines 22–24
-        rows.store(p.x, &maps);
-    }
-    return result;
+std::unique_ptr<RenderSchedule> TaisIntegrator::schedule(const ScheduleInputs& in) const {
+    const Scene& scene = in.scene;
+    return std::make_unique<ScanBands>(
+        in.width, in.height, in.spp, settings_.bandRows, settings_.bandWarmupRows,
+        [&scene, this](const Sampler& sampler) {
+            return std::make_unique<TaisPixels>(scene, *this, sampler);
+        });
 }
 
-std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& j, const PathSettings& path) {
+namespace {
+
+std::unique_ptr<TaisIntegrator> makeTaisIntegrator(ObjectReader& j, const PathSettings& path) {
     TaisSettings s;
     s.path = path;
     std::array<std::string, kMapKinds> pointers;
@@ -217,6 +161,21 @@ std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& j, const PathSettin
     s.bandRows = size("band_rows", s.bandRows, 1, 1 << 20);
     s.bandWarmupRows = size("band_warmup_rows", s.bandWarmupRows, 0, 1 << 20);
     return std::make_unique<TaisIntegrator>(s, std::move(pointers));
+}
+
+}  // namespace
+
+void registerTechnique(TechniqueRegistry& registry) {
+    registry.addIntegrator(
+        "tais",
+        [](ObjectReader& json, const IntegratorContext& context) {
+            std::unique_ptr<TaisIntegrator> tais = makeTaisIntegrator(json, context.path);
+            const TaisIntegrator* integrator = tais.get();
+            return BuiltIntegrator{std::move(tais), [integrator](const ScheduleInputs& in) {
+                                       return integrator->schedule(in);
+                                   }};
+        },
+        /*rendersMedia=*/true);
 }
 
 }  // namespace rr::tais

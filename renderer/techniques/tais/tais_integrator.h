@@ -9,55 +9,57 @@
 // pixel renders, so each pixel's estimate is unbiased.
 //
 // Parallelism: the scan makes every pixel depend on the one before it, so the image is cut into
-// bands of `bandRows` rows. Bands depend only on the settings, never on the thread count, so the
-// image is bit-identical for any number of threads. A band that started from uniform maps would
-// learn from scratch in its first rows; instead it first scans `bandWarmupRows` (4 by default)
-// rows of the band above, with sample indices spp … 2 spp − 1 (independent of the samples the
-// image keeps), and discards their values. Both are measured against one serial scan (bandRows ≥
-// height) in results/tables/tais.md.
+// bands of `bandRows` rows (render/scan_bands.h). Bands depend only on the settings, never on
+// the thread count, so the image is bit-identical for any number of threads. A band that started
+// from uniform maps would learn from scratch in its first rows; instead it first scans
+// `bandWarmupRows` (4 by default) rows of the band above with independent sample indices and
+// discards their values. Both are measured against one serial scan (bandRows ≥ height) in
+// results/tables/tais.md.
 #pragma once
 
 #include <array>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "integrators/light_sample_estimator.h"
+#include "render/technique_registry.h"
 #include "techniques/tais/tais_settings.h"
-
-namespace rr {
-class ObjectReader;
-}
 
 namespace rr::tais {
 
-class TaisIntegrator final : public BandIntegrator {
+class TaisIntegrator final : public Integrator {
   public:
     // `mapPointers[k]`: where the config asked for map k (for errors); empty in auto mode.
     TaisIntegrator(const TaisSettings& settings, std::array<std::string, kMapKinds> mapPointers);
 
     std::string name() const override { return "tais"; }
     nlohmann::json parameters() const override;
-    bool supportsMedia() const override { return true; }
     // Resolves `auto` to the maps whose decisions the scene has; rejects a map asked for
     // whose decision the scene lacks.
     void prepare(const Scene& scene) override;
-    int bandRows() const override { return settings_.bandRows; }
-    BandResult renderBand(const Scene& scene, const Sampler& sampler, int y0, int y1, uint32_t spp,
-                          Film& film) const override;
+
+    // Bands of settings.bandRows rows in scan order, one TaisPixels hook per band.
+    std::unique_ptr<RenderSchedule> schedule(const ScheduleInputs& inputs) const;
 
     const TaisSettings& settings() const { return settings_; }
+    // Per scene light: whether it can invert its samples (point-on-light maps).
+    std::span<const char> invertibleLights() const { return invertible_; }
+    // Next-event estimation: light sampling and the guided BSDF sample combined by MIS.
+    const DirectLightingEstimator& nextEventEstimator() const { return nee_; }
 
   private:
     TaisSettings settings_;
     std::array<std::string, kMapKinds> mapPointers_;
-    std::vector<char> invertible_;  // per scene light: can invert its samples
+    std::vector<char> invertible_;
+    LightSampleEstimator nee_{1, /*multipleImportance=*/true};
 };
-
-// The `tais` integrator from its config object (configs/README.md documents the keys).
-std::unique_ptr<Integrator> makeTaisIntegrator(ObjectReader& json, const PathSettings& path);
 
 // Whether the scene makes the decision a map steers (no time map without motion blur, …).
 bool sceneHasDecision(const Scene& scene, MapKind kind);
+
+// Registers the `tais` integrator (configs/README.md documents its keys).
+void registerTechnique(TechniqueRegistry& registry);
 
 }  // namespace rr::tais

@@ -206,16 +206,6 @@ TEST(TemporaryMaps, OneOverNKeepsEveryPreimageDensityPositive) {
         EXPECT_NEAR(empty.pdf((c + 0.5f) / 16), 1.0f, 1e-6f);
 }
 
-// §3.3: "we scan back and forth": a band's rows alternate direction from its first row.
-TEST(Scan, SerpentineOrderAlternatesFromTheBandsFirstRow) {
-    using P = tais::PixelCoord;
-    const std::vector<P> expected = {{0, 4}, {1, 4}, {2, 4}, {2, 5}, {1, 5}, {0, 5}, {0, 6}};
-    const std::vector<P> order = tais::serpentineOrder(3, 4, 7);
-    ASSERT_EQ(order.size(), 9u);
-    for (size_t i = 0; i < expected.size(); ++i)
-        EXPECT_EQ(order[i], expected[i]) << "position " << i;
-}
-
 // Fig. 3 as we read it: x−2 … x+2 in the row above and the two previous pixels of this row in
 // its scan direction, clipped at the edges; none for the band's first pixel.
 TEST(Scan, RenderedNeighboursAreSevenAwayFromTheEdges) {
@@ -243,9 +233,9 @@ TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
     InvertedMap1D start(4);
     EXPECT_EQ(rows.neighbourSum(0, 0, &start), 1);  // no neighbour: the initial map
     EXPECT_NEAR(start.probability(2), 0.25, 1e-12);
-    for (const tais::PixelCoord& p : tais::serpentineOrder(kWidth, 0, 1)) {
-        InvertedMap1D m = mapOf(p.x, p.y);
-        rows.store(p.x, &m);
+    for (int x = 0; x < kWidth; ++x) {  // row 0 runs left to right
+        InvertedMap1D m = mapOf(x, 0);
+        rows.store(x, &m);
     }
     rows.nextRow();
     InvertedMap1D m3 = mapOf(3, 1), m2 = mapOf(2, 1);

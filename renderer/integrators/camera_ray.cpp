@@ -1,0 +1,13 @@
+#include "integrators/camera_ray.h"
+
+namespace rr {
+
+CameraSample drawCameraSample(const Camera& camera, const PixelSample& sample) {
+    CameraSample c;
+    c.film = sample.get2D(Decision::FilmPosition);
+    if (camera.isThinLens()) c.lens = sample.get2D(Decision::Lens);
+    if (camera.hasShutterInterval()) c.time = sample.get1D(Decision::Time);
+    return c;
+}
+
+}  // namespace rr

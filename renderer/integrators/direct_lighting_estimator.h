@@ -1,0 +1,67 @@
+// Direct-lighting estimator interface: the light that emitters send to a shading point and the
+// point scatters towards the viewer. One implementation of next-event estimation serves both
+// the `direct` integrator and every vertex of the path walk; estimators are chosen by name in
+// the scene's integrator ("strategy" or "estimator"; configs/README.md).
+//  - light: light sampling only;
+//  - bsdf: no light samples: emission is found by the integrator's own BSDF (or phase)
+//    samples and counts in full;
+//  - mis: light sampling combined with the integrator's scattering samples by the power
+//    heuristic (Veach & Guibas 1995).
+// Techniques add more (resampled importance sampling, two-stage sampling of environment maps)
+// through the technique registry.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "integrators/integrator.h"
+#include "integrators/shading_point.h"
+
+namespace rr {
+
+// How emission that the integrator's own scattering sample finds counts against the estimate.
+enum class FoundEmission : uint8_t {
+    Full,      // the estimate does not cover it (no light samples)
+    Weighted,  // MIS: weighted against the estimate's light samples
+    Excluded,  // the estimate covers all of it: finding it again would count it twice
+};
+
+class DirectLightingEstimator {
+  public:
+    virtual ~DirectLightingEstimator() = default;
+    virtual std::string name() const = 0;
+    // Parameters as recorded in the output metadata (merged into the integrator's).
+    virtual nlohmann::json parameters() const = 0;
+    // Light samples per estimate (0: the estimate is always zero and need not be asked).
+    virtual uint32_t lightSamples() const = 0;
+    virtual FoundEmission foundEmission() const = 0;
+    // The most draws of one decision an estimate makes (DecisionSite::repeatCount).
+    virtual uint32_t decisionRepeats() const { return lightSamples(); }
+
+    // Estimates the direct light at `point` towards the viewer, adding each sample's
+    // contribution to the point (ShadingPoint::add).
+    virtual void estimate(ShadingPoint& point) const = 0;
+};
+
+// The weight of emission found by `scatterSamples` scattering samples of density `scatterPdf`,
+// against `estimator`; `lightPdf()` gives the density with which the estimator's light
+// sampling picks the same light point or direction (asked only for MIS). Specular samples and
+// the camera ray (`inFull`) count in full: no light sample can find what they find.
+template <class LightPdf>
+float foundEmissionWeight(const DirectLightingEstimator& estimator, bool inFull,
+                          float scatterSamples, float scatterPdf, const LightPdf& lightPdf) {
+    if (inFull) return 1;
+    switch (estimator.foundEmission()) {
+        case FoundEmission::Full:
+            return 1;
+        case FoundEmission::Weighted:
+            return powerHeuristic(scatterSamples, scatterPdf,
+                                  static_cast<float>(estimator.lightSamples()), lightPdf());
+        case FoundEmission::Excluded:
+            break;
+    }
+    return 0;
+}
+
+}  // namespace rr

@@ -1,0 +1,141 @@
+// The two kinds of path vertex as shading points for direct-lighting estimators
+// (shading_point.h): a surface vertex and, in scenes with media, a medium vertex. Both sample
+// lights through the path's guide, trace shadow rays through media when the walk has them
+// (kMedia), and add what the estimator finds, scaled by the path's throughput, to the
+// radiance the path gathers.
+#pragma once
+
+#include "integrators/medium_tracking.h"
+#include "integrators/shading_point.h"
+#include "integrators/standard_sampling.h"
+
+namespace rr {
+
+// What reaches the end of `shadow`, which starts in `medium`: the transmittance, or without
+// media 0 or 1; *survival: the free-flight survival probability over it.
+template <bool kMedia>
+Rgb traceShadowRay(const Scene& scene, const Ray& shadow, const Medium* medium, bool infinite,
+                   float* survival, RayCounters& rays) {
+    if constexpr (kMedia) {
+        return shadowTransmittance(scene, shadow, medium, infinite, survival, rays);
+    } else {
+        *survival = 1;
+        ++rays.shadow;
+        return Rgb(scene.occluded(shadow) ? 0.0f : 1.0f);
+    }
+}
+
+// Where a vertex's estimate goes: the path's radiance, scaled by its throughput, and the
+// guide's credit.
+template <class Guide>
+struct VertexOutput {
+    Guide& guide;
+    uint32_t vertex;
+    const Rgb& throughput;
+    Rgb& radiance;
+    RayCounters& rays;
+
+    void add(const Rgb& contribution) const {
+        const Rgb scaled = throughput * contribution;
+        guide.lightContribution(vertex, scaled);
+        radiance += scaled;
+    }
+};
+
+template <bool kMedia, PathGuide Guide>
+class SurfaceVertex final : public ShadingPoint {
+  public:
+    // `wo`: local frame; `medium`: the one the arriving ray travelled in; `scatterSamples`:
+    // the BSDF samples the integrator combines with the estimate.
+    SurfaceVertex(const VertexOutput<Guide>& out, const SurfaceHit& hit, const Material& material,
+                  const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
+                  const Medium* medium, float scatterSamples)
+        : out_(out),
+          hit_(hit),
+          material_(material),
+          ctx_(ctx),
+          frame_(frame),
+          wo_(wo),
+          medium_(medium),
+          scatterSamples_(scatterSamples) {}
+
+    bool sampleLight(uint32_t repeat, uint32_t count, LightSample* ls, float* pdf,
+                     const Light** light) override {
+        return out_.guide.sampleLight(out_.vertex, repeat, count, hit_.position, hit_.time, ls, pdf,
+                                      light);
+    }
+    Rgb scattering(const Vec3& wi) const override {
+        return material_.eval(ctx_, wo_, frame_.toLocal(wi));
+    }
+    float scatteringPdf(const Vec3& wi) const override {
+        return out_.guide.bsdfPdf(out_.vertex, material_, ctx_, frame_, wo_, frame_.toLocal(wi));
+    }
+    float scatteringSamples() const override { return scatterSamples_; }
+    Rgb visibility(const LightSample& ls, bool infinite, float* survival) override {
+        const Medium* medium =
+            kMedia ? mediumOnSide(out_.guide.scene(), hit_, ls.direction, medium_) : nullptr;
+        return traceShadowRay<kMedia>(out_.guide.scene(),
+                                      hit_.spawnTo(ls.position, ls.normal, ls.errorScale), medium,
+                                      infinite, survival, out_.rays);
+    }
+    Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
+                     float density) const override {
+        return f * le * tr * (misWeight / density);
+    }
+    void add(const Rgb& contribution) override { out_.add(contribution); }
+
+  private:
+    VertexOutput<Guide> out_;
+    const SurfaceHit& hit_;
+    const Material& material_;
+    const ShadingContext& ctx_;
+    const Frame& frame_;
+    const Vec3& wo_;
+    const Medium* medium_;
+    float scatterSamples_;
+};
+
+template <PathGuide Guide>
+class MediumVertex final : public ShadingPoint {
+  public:
+    // `wo`: world space, back along the arriving ray; one phase sample continues the path.
+    MediumVertex(const VertexOutput<Guide>& out, const Vec3& position, float time, const Vec3& wo,
+                 const Medium& medium)
+        : out_(out), position_(position), time_(time), wo_(wo), medium_(medium) {}
+
+    bool sampleLight(uint32_t repeat, uint32_t count, LightSample* ls, float* pdf,
+                     const Light** light) override {
+        return out_.guide.sampleLight(out_.vertex, repeat, count, position_, time_, ls, pdf, light);
+    }
+    Rgb scattering(const Vec3& wi) const override {
+        const float p = medium_.phase().eval(wo_, wi);
+        return Rgb(p > 0 ? p : 0.0f);
+    }
+    float scatteringPdf(const Vec3& wi) const override {
+        return out_.guide.phasePdf(out_.vertex, medium_.phase(), wo_, wi);
+    }
+    float scatteringSamples() const override { return 1; }
+    Rgb visibility(const LightSample& ls, bool infinite, float* survival) override {
+        // A medium point lies on no surface: only the light's end of the shadow ray is lifted.
+        const Vec3 target =
+            offsetRayOrigin(ls.position, ls.normal, position_ - ls.position, ls.errorScale);
+        const float distance = length(target - position_);
+        const Ray shadow{position_, (target - position_) / distance, distance, time_};
+        return shadowTransmittance(out_.guide.scene(), shadow, &medium_, infinite, survival,
+                                   out_.rays);
+    }
+    Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
+                     float density) const override {
+        return le * tr * (f.r * misWeight / density);
+    }
+    void add(const Rgb& contribution) override { out_.add(contribution); }
+
+  private:
+    VertexOutput<Guide> out_;
+    Vec3 position_;
+    float time_;
+    Vec3 wo_;
+    const Medium& medium_;
+};
+
+}  // namespace rr

@@ -1,0 +1,47 @@
+// The vertex where a direct-lighting estimator works: a surface point (its BSDF) or a point in a
+// medium (its phase function), as the integrator that owns it sees it. The integrator decides
+// how light is sampled (a technique's guide may steer it), how the shadow ray runs (through
+// media or not) and how many scattering samples of its own are combined with the estimate; the
+// estimator only asks. Directions are world-space unit vectors pointing towards the light.
+#pragma once
+
+#include <cstdint>
+
+#include "math/rgb.h"
+#include "sampling/sampler.h"
+#include "scene/light.h"
+
+namespace rr {
+
+class ShadingPoint {
+  public:
+    virtual ~ShadingPoint() = default;
+
+    // Draw `repeat` of `count` of a light and a point on it (the light-selection and
+    // light-point decisions of this vertex): the sample, its density (selection × point, per
+    // solid angle) and the light. False when no light was sampled.
+    virtual bool sampleLight(uint32_t repeat, uint32_t count, LightSample* sample, float* pdf,
+                             const Light** light) = 0;
+    // f(wo, wi)·|cos θi| at a surface; the phase function (grey) in a medium.
+    virtual Rgb scattering(const Vec3& wi) const = 0;
+    // The density with which this vertex's own scattering sample (BSDF or phase function,
+    // as the integrator draws it) picks wi, and how many of those samples the integrator
+    // combines with the estimate: the other strategy of an MIS weight.
+    virtual float scatteringPdf(const Vec3& wi) const = 0;
+    virtual float scatteringSamples() const = 0;
+    // What reaches this point along the shadow ray to `sample` (the light's end lifted off
+    // it): 0 or 1, or the transmittance of the media crossed. `*survival` receives the
+    // probability that free-flight sampling crosses the same segments (1 without media), which
+    // joins scatteringPdf in MIS weights.
+    virtual Rgb visibility(const LightSample& sample, bool infiniteLight, float* survival) = 0;
+    // A light sample's contribution f·Le·Tr·misWeight / density. In a medium f is the phase
+    // function, a scalar, which joins the scalar factor.
+    virtual Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
+                             float density) const = 0;
+    // Adds one light sample's contribution to the radiance the integrator gathers, scaled by
+    // what the path carries to this point (a technique's guide hears of it too: TAIS credits
+    // its light maps with it).
+    virtual void add(const Rgb& contribution) = 0;
+};
+
+}  // namespace rr

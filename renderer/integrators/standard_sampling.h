@@ -1,0 +1,119 @@
+// How a path makes its decisions: the Guide contract of the path walk (path_walk.h), and
+// StandardSampling, plain importance sampling, which `path` and `path_mis` use and which a
+// technique extends by hiding the members whose decisions it steers (TAIS's MapGuide). The walk
+// is a template on its guide, so StandardSampling compiles away entirely.
+//
+// `vertex` is the index of the scattering vertex that makes a decision (0: the first one the
+// camera ray reaches); `radiance` is what the path has gathered before the decision, so a guide
+// can credit a decision with what follows it. A guide that changes a decision's density must
+// report the changed density from the matching *Pdf member, which the walk uses in every
+// sample weight and MIS weight, so that the estimate stays unbiased.
+#pragma once
+
+#include <concepts>
+
+#include "integrators/camera_ray.h"
+#include "scene/lights/area_light.h"
+#include "scene/scene.h"
+
+namespace rr {
+
+class StandardSampling {
+  public:
+    StandardSampling(const Scene& scene, const PixelSample& sample)
+        : scene_(scene), sample_(sample) {}
+
+    // The camera ray through pixel (x, y) and its sampling weight (1 unless the guide warps
+    // the camera's decisions).
+    Ray cameraRay(int x, int y, float* weight) {
+        *weight = 1;
+        return generateCameraRay(scene_.camera(), x, y, sample_);
+    }
+    // The coordinate of the free flight of the segment that leads to `vertex` (the camera
+    // ray's for vertex 0), and the density of any warp applied to it.
+    float flightCoordinate(uint32_t vertex, const Rgb& /*radiance*/, float* warpPdf) {
+        *warpPdf = 1;
+        return sample_.get1D(Decision::MediumDistance, vertex);
+    }
+    // Draw `repeat` of `count` of next-event estimation's light and the point on it, with the
+    // density of the pair.
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
+                     float time, LightSample* ls, float* pdf, const Light** chosen) {
+        float selectPmf;
+        const Light* light = scene_.lightSelector().select(
+            sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}), reference,
+            &selectPmf);
+        if (!light ||
+            !light->sample(reference,
+                           sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count}),
+                           time, ls))
+            return false;
+        *pdf = selectPmf * ls->pdf;
+        *chosen = light;
+        return true;
+    }
+    // A light sample's contribution (already weighted and scaled by the path) at `vertex`.
+    void lightContribution(uint32_t /*vertex*/, const Rgb& /*contribution*/) {}
+    // Density with which sampleLight() at `vertex` picks `light` and its point `hit`.
+    float lightPdf(uint32_t /*vertex*/, const AreaLight& light, const Vec3& reference,
+                   const SurfaceHit& hit) const {
+        return scene_.lightSelector().pmf(light, reference) * light.pdf(reference, hit);
+    }
+    // The same for an infinite light seen in direction `w`.
+    float lightPdf(uint32_t /*vertex*/, const Light& light, const Vec3& reference,
+                   const Vec3& w) const {
+        return scene_.lightSelector().pmf(light, reference) * light.directionPdf(w);
+    }
+    // The surface scattering decision (lobe, then direction) at `vertex`.
+    bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
+                    const Frame& /*frame*/, const Vec3& wo, const Rgb& /*radiance*/,
+                    BsdfSample* bs) {
+        return material.sample(ctx, wo, sample_.get1D(Decision::BsdfLobe, vertex),
+                               sample_.get2D(Decision::BsdfDirection, vertex), bs);
+    }
+    // Density with which sampleBsdf() at `vertex` yields the local direction `wi`.
+    float bsdfPdf(uint32_t /*vertex*/, const Material& material, const ShadingContext& ctx,
+                  const Frame& /*frame*/, const Vec3& wo, const Vec3& wi) const {
+        return material.pdf(ctx, wo, wi);
+    }
+    // The scattering direction at a medium vertex (the BsdfDirection decision there) and its
+    // density (0: no sample).
+    float samplePhase(uint32_t vertex, const PhaseFunction& phase, const Vec3& wo, Vec3* wi) {
+        return phase.sample(wo, sample_.get2D(Decision::BsdfDirection, vertex), wi);
+    }
+    float phasePdf(uint32_t /*vertex*/, const PhaseFunction& phase, const Vec3& wo,
+                   const Vec3& wi) const {
+        return phase.pdf(wo, wi);
+    }
+
+    const PixelSample& sample() const { return sample_; }
+    const Scene& scene() const { return scene_; }
+
+  private:
+    const Scene& scene_;
+    const PixelSample& sample_;
+};
+
+// The contract StandardSampling defines: what the path walk asks of a guide.
+template <class G>
+concept PathGuide = requires(G& g, const G& cg, int pixel, uint32_t index, float* out,
+                             const Rgb& radiance, const Vec3& v, LightSample* ls,
+                             const Light** chosen, const AreaLight& areaLight, const Light& light,
+                             const SurfaceHit& hit, const Material& material,
+                             const ShadingContext& ctx, const Frame& frame, BsdfSample* bs,
+                             const PhaseFunction& phase, Vec3* wi) {
+    { g.cameraRay(pixel, pixel, out) } -> std::same_as<Ray>;
+    { g.flightCoordinate(index, radiance, out) } -> std::same_as<float>;
+    { g.sampleLight(index, index, index, v, 0.0f, ls, out, chosen) } -> std::same_as<bool>;
+    g.lightContribution(index, radiance);
+    { cg.lightPdf(index, areaLight, v, hit) } -> std::same_as<float>;
+    { cg.lightPdf(index, light, v, v) } -> std::same_as<float>;
+    { g.sampleBsdf(index, material, ctx, frame, v, radiance, bs) } -> std::same_as<bool>;
+    { cg.bsdfPdf(index, material, ctx, frame, v, v) } -> std::same_as<float>;
+    { g.samplePhase(index, phase, v, wi) } -> std::same_as<float>;
+    { cg.phasePdf(index, phase, v, v) } -> std::same_as<float>;
+    { cg.sample() } -> std::same_as<const PixelSample&>;
+    { cg.scene() } -> std::same_as<const Scene&>;
+};
+
+}  // namespace rr
