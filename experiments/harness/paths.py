@@ -4,6 +4,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs" / "experiments"
+SCHEMAS = ROOT / "configs" / "schema"  # JSON Schemas of the configs, one per kind
 RESULTS = ROOT / "results"
 RENDERS = RESULTS / "renders"  # per-run EXRs, git-ignored
 TABLES = RESULTS / "tables"
