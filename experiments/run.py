@@ -103,7 +103,7 @@ def cmd_check(args):
         verdicts = thresholds.run_check(exp, args.jobs)
         print(f"[{exp.id}] thresholds ({exp.thresholds.profile} profile):")
         print(thresholds.format_verdicts(exp, verdicts), flush=True)
-        failed += sum(not v["passed"] for v in verdicts)
+        failed += sum(not v.passed for v in verdicts)
     if failed:
         print(f"{failed} threshold(s) failed", file=sys.stderr)
     return 1 if failed else 0
