@@ -24,7 +24,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from harness import (config, experiment, jobs, paths, references,  # noqa: E402
                      renders, thresholds)
-from harness.errors import ConfigError, HarnessFailure  # noqa: E402
+from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
 
 def load_configs(files):
@@ -32,28 +32,35 @@ def load_configs(files):
     return [config.load(f) for f in files]
 
 
+def report_skipped(what, rejection):
+    print(f"{paths.relative(what)}: skipped, an asset is absent ({rejection.message})")
+
+
 def validate_scenes():
     """`renderer check` on every configs/scenes/*.json. A scene whose asset is absent is
     skipped with a message, unless REQUIRE_ASSETS=1 (CI has ../shared beside the checkout)."""
-    for scene in sorted((paths.ROOT / "configs" / "scenes").glob("*.json")):
+    for scene in sorted(paths.SCENES.glob("*.json")):
         try:
-            jobs.run_command([paths.renderer_binary(), "check", scene])
-        except HarnessFailure as e:
-            if " not found; searched " in str(e) and os.environ.get("REQUIRE_ASSETS") != "1":
-                print(f"{paths.relative(scene)}: skipped, an asset is absent ({e})")
-                continue
-            raise ConfigError(scene, "", f"does not validate: {e}") from None
+            renders.check([scene])
+        except SceneRejected as e:
+            if not e.skippable:
+                raise
+            report_skipped(scene, e)
+            continue
         print(f"{paths.relative(scene)}: valid")
 
 
 def validate_experiment(exp):
-    """The scene documents of every technique and of the reference, in both profiles."""
+    """The scene documents of every technique and of the reference, in both profiles. An
+    absent asset that may be skipped (see SceneRejected.skippable) is raised as it is."""
     for profile in exp.profiles.values():
         for integrator in [t.integrator for t in exp.techniques.values()] + [
                 exp.reference_integrator]:
             try:
                 renders.check_scene(exp, profile, integrator)
-            except HarnessFailure as e:
+            except SceneRejected as e:
+                if e.skippable:
+                    raise
                 raise ConfigError(exp.file, "", f"the scene does not validate: {e}") from None
 
 
@@ -61,7 +68,11 @@ def cmd_validate(args):
     if not args.configs:
         validate_scenes()
     for exp in load_configs(args.configs):
-        validate_experiment(exp)
+        try:
+            validate_experiment(exp)
+        except SceneRejected as e:
+            report_skipped(exp.file, e)
+            continue
         print(f"{paths.relative(exp.file)}: valid")
     return 0
 

@@ -18,13 +18,23 @@ def default_jobs() -> int:
     return max(1, len(os.sched_getaffinity(0)))
 
 
+def run_process(args: Sequence[object]) -> subprocess.CompletedProcess[str]:
+    """Runs a command to its end, capturing its output, whatever its exit status."""
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True)
+
+
+def failure(proc: subprocess.CompletedProcess[str]) -> HarnessFailure:
+    """A failed command as a HarnessFailure carrying the last line of its stderr."""
+    message = proc.stderr.strip().splitlines()
+    return HarnessFailure(f"{' '.join(proc.args[:2])} ... exited with status {proc.returncode}: "
+                          f"{message[-1] if message else '(no message)'}")
+
+
 def run_command(args: Sequence[object]) -> str:
     """Runs a command; returns its stdout. Raises HarnessFailure with its stderr."""
-    proc = subprocess.run([str(a) for a in args], capture_output=True, text=True)
+    proc = run_process(args)
     if proc.returncode != 0:
-        message = proc.stderr.strip().splitlines()
-        raise HarnessFailure(f"{' '.join(map(str, args[:2]))} ... exited with status "
-                             f"{proc.returncode}: {message[-1] if message else '(no message)'}")
+        raise failure(proc)
     return proc.stdout
 
 

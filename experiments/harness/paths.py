@@ -10,6 +10,7 @@ if TYPE_CHECKING:  # config imports this module
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs" / "experiments"
+SCENES = ROOT / "configs" / "scenes"
 SCHEMAS = ROOT / "configs" / "schema"  # JSON Schemas of the configs, one per kind
 RESULTS = ROOT / "results"
 RENDERS = RESULTS / "renders"  # per-run EXRs, git-ignored

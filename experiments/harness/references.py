@@ -30,7 +30,8 @@ def key(exp: Experiment, profile: Profile) -> str:
     the file do not count) and its spp. A change makes the reference stale. Code changes do
     not: after fixing an integrator, re-render with `make references FORCE=1`."""
     spec = {
-        "scene_document_sha256": renders.check_scene(exp, profile, exp.reference_integrator),
+        "scene_document_sha256": renders.check_scene(exp, profile,
+                                                     exp.reference_integrator).scene_sha256,
         "spp": profile.reference_spp,
     }
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()

@@ -1,17 +1,28 @@
 """Command lines for the renderer and the metrics tool, built from an experiment, and their
 JSON answers."""
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from . import config, jobs, paths
 from .config import Experiment, Integrator, Profile
-from .errors import HarnessFailure
+from .errors import HarnessFailure, SceneRejected
 
 # Reference halves use seeds far from the experiments' (0, 1, 2, ...), so a reference is
 # independent of every image compared against it.
 REFERENCE_SEED_BASE = 1 << 30
+
+
+@dataclass(frozen=True)
+class SceneCheck:
+    """`renderer check --json`'s answer for a valid scene document."""
+    integrator: str
+    resolution: tuple[int, int]
+    spp: int
+    features: str
+    scene_sha256: str  # of the document after overrides: what renders record as sceneSha256
 
 
 @dataclass(frozen=True)
@@ -32,12 +43,25 @@ def scene_args(exp: Experiment, profile: Profile, integrator: Integrator) -> lis
     return args
 
 
-def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> str:
-    """Validates the scene document a render would use (exit 2 from the renderer -> error);
-    returns the document's sha256 (what renders record as renderer.sceneSha256)."""
-    out = jobs.run_command([paths.renderer_binary(), "check",
-                            *scene_args(exp, profile, integrator)])
-    return out.split("scene sha256 ")[1].split()[0]
+def check(args: Sequence[object]) -> SceneCheck:
+    """`renderer check ARGS --json` (ARGS: the scene file, then options). Raises SceneRejected
+    for a document the renderer refuses, HarnessFailure when it gives no answer (a bad option,
+    a crash)."""
+    proc = jobs.run_process([paths.renderer_binary(), "check", *args, "--json"])
+    try:
+        answer: dict[str, Any] = json.loads(proc.stdout)
+    except ValueError:
+        raise jobs.failure(proc) from None
+    if not answer["valid"]:
+        raise SceneRejected(paths.relative(args[0]), answer["error"], answer["pointer"],
+                            answer["message"])
+    return SceneCheck(answer["integrator"], tuple(answer["resolution"]), answer["spp"],
+                      answer["features"], answer["sceneSha256"])
+
+
+def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:
+    """Checks the scene document a render of `integrator` at the profile's size would use."""
+    return check(scene_args(exp, profile, integrator))
 
 
 def render(exp: Experiment, profile: Profile, integrator: Integrator, out: Path, seed: int,
