@@ -277,8 +277,9 @@ def _legend(paper: str, docs: list[Results]) -> str:
         "means over seeds with Student-t 95 % intervals; a gain is how many times better than "
         "the baseline (error ratio, or efficiency ratio for P-Eff) with a delta-method 95 % "
         f"interval. Verdict: *reproduced* when our gain is within ×{stats.REPRODUCED_FACTOR} of "
-        "the paper's or the paper's lies in our interval, else *weaker* / *stronger*; — where "
-        "the paper reports no number." + matched)
+        "the paper's; *weaker* / *stronger* when our whole 95 % interval lies below / above "
+        "that band; *inconclusive* when our gain is outside the band but its interval reaches "
+        "into it; — where the paper reports no number." + matched)
 
 
 def markdown(paper: str, docs: list[Results]) -> str:

@@ -43,6 +43,13 @@ class TablesTest(unittest.TestCase):
         self.assertIn("0.207 (16 spp)", row)
         self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | — | — | 10 |", text)
 
+    def test_the_legend_explains_every_verdict(self):
+        legend = tables.markdown("paper", [document()]).split("\n\n")[1]
+        for verdict in ("reproduced", "weaker", "stronger", "inconclusive"):
+            self.assertIn(f"*{verdict}*", legend)
+        self.assertIn("*inconclusive* when our gain is outside the band but its interval "
+                      "reaches into it", legend)
+
     def test_results_of_a_changed_config_are_flagged(self):
         self.assertIn("its config has changed since this run", tables.markdown("paper",
                                                                                [document()]))
