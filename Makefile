@@ -16,6 +16,7 @@ HARNESS     = BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile $(PROFILE)
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
+            python3-jsonschema \
             openimageio-tools \
             libembree-dev libtbb-dev libopenimageio-dev libopencv-core-dev python3-imath \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \

@@ -15,11 +15,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from harness import paths  # noqa: E402
-from harness.plots import _read_rgb  # noqa: E402
+from harness import paths, records  # noqa: E402
+from harness.plots import read_rgb  # noqa: E402
+from harness.records import SPP, TechniqueBudget  # noqa: E402
 
 
-def concentration(image, reference):
+def concentration(image: np.ndarray, reference: np.ndarray) -> dict[str, float]:
     squared = ((image - reference) ** 2).mean(axis=2).ravel()
     order = np.sort(squared)[::-1]
     total = order.sum()
@@ -32,14 +33,14 @@ def concentration(image, reference):
     return out
 
 
-def main():
+def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results")
     parser.add_argument("--spp", type=int, help="budget (default: the table's)")
     args = parser.parse_args()
     doc = json.loads(Path(args.results).read_text())
     spp = args.spp or doc["table"]["spp"]
-    reference = _read_rgb(paths.ROOT / doc["reference"]["file"])
+    reference = read_rgb(paths.ROOT / doc["reference"]["file"])
     keys = ["sigma_over_mu", "share_0.1%", "sigma_over_mu_without_0.1%", "share_1%",
             "sigma_over_mu_without_1%"]
     print(f"{doc['experiment']} ({doc['profile']}), {spp} spp, mean over "
@@ -47,12 +48,12 @@ def main():
     print("| technique | σ/µ | worst 0.1 % share | σ/µ without them | worst 1 % share "
           "| σ/µ without them |")
     print("|---|---|---|---|---|---|")
+    runs = records.group_by_key(records.read_runs(doc))
     for technique in doc["techniques"]:
-        runs = [r for r in doc["runs"] if r["technique"] == technique and r["kind"] == "spp"
-                and r["budget"] == spp]
-        if not runs:
+        at_budget = runs.get(TechniqueBudget(technique, SPP, spp))
+        if not at_budget:
             continue
-        rows = [concentration(_read_rgb(paths.ROOT / r["file"]), reference) for r in runs]
+        rows = [concentration(read_rgb(paths.ROOT / r.file), reference) for r in at_budget]
         means = [np.mean([row[k] for row in rows]) for k in keys]
         print(f"| {technique} | {means[0]:.3g} | {means[1]:.0%} | {means[2]:.3g} | "
               f"{means[3]:.0%} | {means[4]:.3g} |")

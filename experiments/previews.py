@@ -7,8 +7,8 @@ Renders each scene (default: every configs/scenes/*.json) with its own integrato
 size (the longer side --size pixels, the scene's aspect ratio kept) and --spp samples per
 pixel, into results/previews/<scene>.png (the renderer's sRGB preview at exposure 0; the EXR
 beside it), then lays them out in results/previews/contact_sheet.png. A scene whose asset is
-absent gets a labelled blank tile; a scene that fails to load or render is reported and makes
-the exit status 1 once the sheet is written."""
+absent gets a labelled blank tile (unless REQUIRE_ASSETS=1); a scene that fails to load or
+render is reported and makes the exit status 1 once the sheet is written."""
 import argparse
 import math
 import re
@@ -22,37 +22,29 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from harness import paths  # noqa: E402
+from harness import paths, renders  # noqa: E402
+from harness.errors import HarnessFailure, SceneRejected  # noqa: E402
 
 OUT = paths.RESULTS / "previews"
 COLUMNS = 5
 TILE_INCHES = 2.0
 
 
-def natural_key(path):
+def natural_key(path: Path) -> list[int | str]:
     """fig4 before fig10."""
     return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.stem)]
 
 
-def scene_summary(scene):
-    """`renderer check`: (integrator, width, height), or raises with the renderer's message."""
-    proc = subprocess.run([str(paths.renderer_binary()), "check", str(scene)],
-                          capture_output=True, text=True)
-    if proc.returncode != 0:
-        raise RuntimeError(proc.stderr.strip().splitlines()[-1])
-    m = re.search(r"valid \((\w+), (\d+)x(\d+),", proc.stdout)
-    return m.group(1), int(m.group(2)), int(m.group(3))
-
-
-def preview_resolution(width, height, size):
+def preview_resolution(width: int, height: int, size: int) -> tuple[int, int]:
     scale = size / max(width, height)
     return max(1, round(width * scale)), max(1, round(height * scale))
 
 
-def render(scene, resolution, spp):
+def render(scene: Path, resolution: tuple[int, int], spp: int) -> Path:
     """Renders the scene; returns the PNG preview's path."""
     exr = OUT / f"{scene.stem}.exr"
     subprocess.run([str(paths.renderer_binary()), "render", str(scene), "--out", str(exr),
@@ -61,24 +53,28 @@ def render(scene, resolution, spp):
     return exr.with_suffix(".png")
 
 
-def preview(scene, size, spp):
+def preview(scene: Path, size: int,
+            spp: int) -> tuple[np.ndarray | None, str, str | None]:
     """One scene: (tile image or None, label, failure message or None)."""
     try:
-        integrator, width, height = scene_summary(scene)
-    except RuntimeError as e:
-        if " not found; searched " in str(e):
+        check = renders.check([scene])
+    except SceneRejected as e:
+        if e.skippable:
             return None, f"{scene.stem}\n(asset absent)", None
+        return None, f"{scene.stem}\n(does not load)", e.message
+    except HarnessFailure as e:
         return None, f"{scene.stem}\n(does not load)", str(e)
-    resolution = preview_resolution(width, height, size)
+    resolution = preview_resolution(*check.resolution, size)
     try:
         png = render(scene, resolution, spp)
     except subprocess.CalledProcessError as e:
         message = (e.stderr or "").strip().splitlines()
         return None, f"{scene.stem}\n(render failed)", message[-1] if message else str(e)
-    return mpimg.imread(png), f"{scene.stem}\n{integrator}", None
+    return mpimg.imread(png), f"{scene.stem}\n{check.integrator}", None
 
 
-def contact_sheet(tiles, spp, size, out):
+def contact_sheet(tiles: list[tuple[np.ndarray | None, str]], spp: int, size: int,
+                  out: Path) -> None:
     rows = math.ceil(len(tiles) / COLUMNS)
     fig, axes = plt.subplots(rows, COLUMNS, figsize=(COLUMNS * TILE_INCHES,
                                                      rows * (TILE_INCHES + 0.35)),
@@ -96,15 +92,14 @@ def contact_sheet(tiles, spp, size, out):
     plt.close(fig)
 
 
-def main():
+def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("scenes", nargs="*", type=Path)
     parser.add_argument("--size", type=int, default=128, help="longer side in pixels")
     parser.add_argument("--spp", type=int, default=256, help="samples per pixel")
     args = parser.parse_args()
-    scenes = args.scenes or sorted((paths.ROOT / "configs" / "scenes").glob("*.json"),
-                                   key=natural_key)
+    scenes = args.scenes or sorted(paths.SCENES.glob("*.json"), key=natural_key)
     OUT.mkdir(parents=True, exist_ok=True)
 
     tiles, failures, start = [], [], time.monotonic()

@@ -18,60 +18,73 @@ import argparse
 import json
 import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from harness import (config, experiment, jobs, paths, references,  # noqa: E402
                      renders, thresholds)
-from harness.errors import ConfigError, HarnessFailure  # noqa: E402
+from harness.config import Experiment  # noqa: E402
+from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
 
-def load_configs(files):
+def load_configs(files: list[Path]) -> list[Experiment]:
     files = files or paths.all_experiment_configs()
     return [config.load(f) for f in files]
 
 
-def validate_scenes():
+def report_skipped(what: Path, rejection: SceneRejected) -> None:
+    print(f"{paths.relative(what)}: skipped, an asset is absent ({rejection.message})")
+
+
+def validate_scenes() -> None:
     """`renderer check` on every configs/scenes/*.json. A scene whose asset is absent is
     skipped with a message, unless REQUIRE_ASSETS=1 (CI has ../shared beside the checkout)."""
-    for scene in sorted((paths.ROOT / "configs" / "scenes").glob("*.json")):
+    for scene in sorted(paths.SCENES.glob("*.json")):
         try:
-            jobs.run_command([paths.renderer_binary(), "check", scene])
-        except HarnessFailure as e:
-            if " not found; searched " in str(e) and os.environ.get("REQUIRE_ASSETS") != "1":
-                print(f"{paths.relative(scene)}: skipped, an asset is absent ({e})")
-                continue
-            raise ConfigError(scene, "", f"does not validate: {e}") from None
+            renders.check([scene])
+        except SceneRejected as e:
+            if not e.skippable:
+                raise
+            report_skipped(scene, e)
+            continue
         print(f"{paths.relative(scene)}: valid")
 
 
-def validate_experiment(exp):
-    """The scene documents of every technique and of the reference, in both profiles."""
+def validate_experiment(exp: Experiment) -> None:
+    """The scene documents of every technique and of the reference, in both profiles. An
+    absent asset that may be skipped (see SceneRejected.skippable) is raised as it is."""
     for profile in exp.profiles.values():
         for integrator in [t.integrator for t in exp.techniques.values()] + [
                 exp.reference_integrator]:
             try:
                 renders.check_scene(exp, profile, integrator)
-            except HarnessFailure as e:
+            except SceneRejected as e:
+                if e.skippable:
+                    raise
                 raise ConfigError(exp.file, "", f"the scene does not validate: {e}") from None
 
 
-def cmd_validate(args):
+def cmd_validate(args: argparse.Namespace) -> int:
     if not args.configs:
         validate_scenes()
     for exp in load_configs(args.configs):
-        validate_experiment(exp)
+        try:
+            validate_experiment(exp)
+        except SceneRejected as e:
+            report_skipped(exp.file, e)
+            continue
         print(f"{paths.relative(exp.file)}: valid")
     return 0
 
 
-def cmd_references(args):
+def cmd_references(args: argparse.Namespace) -> int:
     references.ensure(load_configs(args.configs), args.profile, force=args.force)
     return 0
 
 
-def cmd_run(args):
+def cmd_run(args: argparse.Namespace) -> int:
     experiments = load_configs(args.configs)
     for exp in experiments:
         validate_experiment(exp)
@@ -81,21 +94,21 @@ def cmd_run(args):
     return 0
 
 
-def cmd_tables(args):
+def cmd_tables(args: argparse.Namespace) -> int:
     from harness import tables
     for out in tables.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 
 
-def cmd_plots(args):
+def cmd_plots(args: argparse.Namespace) -> int:
     from harness import plots
     for out in plots.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 
 
-def cmd_check(args):
+def cmd_check(args: argparse.Namespace) -> int:
     failed = 0
     for exp in load_configs(args.configs):
         if exp.thresholds is None:
@@ -103,13 +116,13 @@ def cmd_check(args):
         verdicts = thresholds.run_check(exp, args.jobs)
         print(f"[{exp.id}] thresholds ({exp.thresholds.profile} profile):")
         print(thresholds.format_verdicts(exp, verdicts), flush=True)
-        failed += sum(not v["passed"] for v in verdicts)
+        failed += sum(not v.passed for v in verdicts)
     if failed:
         print(f"{failed} threshold(s) failed", file=sys.stderr)
     return 1 if failed else 0
 
 
-def cmd_calibrate(args):
+def cmd_calibrate(args: argparse.Namespace) -> int:
     exp = config.load(args.config)
     results_file = paths.results_file(exp, args.profile)
     if not results_file.exists():
@@ -120,7 +133,7 @@ def cmd_calibrate(args):
     return 0
 
 
-def cmd_reproduce(args):
+def cmd_reproduce(args: argparse.Namespace) -> int:
     cmd_references(args)
     cmd_run(args)
     cmd_tables(args)
@@ -131,37 +144,52 @@ def cmd_reproduce(args):
     return 0
 
 
-def positive_int(text):
+def positive_int(text: str) -> int:
     value = int(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {text}")
     return value
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--profile", choices=config.PROFILES,
-                        default=os.environ.get("PROFILE") or "quick")
-    parser.add_argument("--jobs", type=positive_int, default=jobs.default_jobs(),
-                        help="renders run in parallel (default: the number of cores)")
-    sub = parser.add_subparsers(dest="command", required=True)
-    for name in ("validate", "references", "run", "check", "reproduce"):
+def parser() -> argparse.ArgumentParser:
+    """The command line; each subcommand's parser sets `func`, the cmd_ function it runs."""
+    top = argparse.ArgumentParser(description=__doc__,
+                                  formatter_class=argparse.RawDescriptionHelpFormatter)
+    top.add_argument("--profile", choices=config.PROFILES,
+                     default=os.environ.get("PROFILE") or "quick")
+    top.add_argument("--jobs", type=positive_int, default=jobs.default_jobs(),
+                     help="renders run in parallel (default: the number of cores)")
+    sub = top.add_subparsers(dest="command", required=True)
+
+    def on_configs(name: str, func: Callable[[argparse.Namespace], int],
+                   force: bool = False) -> None:
         p = sub.add_parser(name)
         p.add_argument("configs", nargs="*", type=Path)
-        if name in ("references", "reproduce"):
+        if force:
             p.add_argument("--force", action="store_true", help="re-render current references")
-    sub.add_parser("tables")
-    sub.add_parser("plots")
+        p.set_defaults(func=func)
+
+    on_configs("validate", cmd_validate)
+    on_configs("references", cmd_references, force=True)
+    on_configs("run", cmd_run)
+    on_configs("check", cmd_check)
+    on_configs("reproduce", cmd_reproduce, force=True)
+    sub.add_parser("tables").set_defaults(func=cmd_tables)
+    sub.add_parser("plots").set_defaults(func=cmd_plots)
     p = sub.add_parser("calibrate")
     p.add_argument("config", type=Path)
     p.add_argument("--spp", type=int, nargs="*", help="budgets to set thresholds at")
-    args = parser.parse_args()
+    p.set_defaults(func=cmd_calibrate)
+    return top
+
+
+def main() -> int:
+    args = parser().parse_args()
     if args.profile not in config.PROFILES:
         print(f"error: unknown profile {args.profile}", file=sys.stderr)
         return 2
     try:
-        return globals()[f"cmd_{args.command}"](args)
+        return args.func(args)
     except ConfigError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

@@ -1,13 +1,23 @@
 """Experiment configs (configs/experiments/<paper>/<figure>.json): strict loading.
 
-Every unknown key, wrong type or impossible value is a ConfigError naming its JSON pointer.
-The schema is documented in configs/README.md ("Experiments")."""
+The structure (keys, types, ranges) is configs/schema/experiment.schema.json, checked with
+jsonschema. This module checks what a schema cannot say: values that must agree with other
+fields (a baseline among the techniques, budgets among a profile's, a crop inside the image),
+budgets in strictly increasing order, and a scene file that exists. Every error is one
+ConfigError naming the JSON pointer of the bad value. The format is documented in
+configs/README.md ("Experiments")."""
+import functools
 import hashlib
 import json
 import math
-import re
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
+
+import jsonschema
+from jsonschema.exceptions import ValidationError, best_match
+from jsonschema.protocols import Validator
 
 from . import paths
 from .errors import ConfigError
@@ -25,38 +35,36 @@ METRICS = {
 # Efficiencies are 1/(T·error): the error metric each one is built on.
 EFFICIENCY_OF = {"p_eff": "tvi_err", "mse_eff": "mse"}
 PROFILES = ("quick", "full")
-MIN_SEEDS = 5
-# Technique names become directory names and JSON-pointer segments.
-NAME_PATTERN = re.compile(r"[A-Za-z0-9_-]+")
-# The harness sets these per render; `set` may not.
-HARNESS_OWNED = ("/integrator", "/render/spp", "/render/seed", "/render/resolution")
-ABSENT = object()  # a missing key, as opposed to a JSON null
 # `"table": {"seconds": "matched"}`: the equal-time rows at each fixed-spp technique's
 # measured render time for the table's spp.
 MATCHED = "matched"
+SCHEMA_FILE = paths.SCHEMAS / "experiment.schema.json"
+
+# An integrator object as the scene has it; the renderer checks its keys.
+Integrator = dict[str, Any]
 
 
 @dataclass
 class Profile:
     name: str
-    resolution: tuple
-    spp: list
-    seconds: list
+    resolution: tuple[int, int]
+    spp: list[int]
+    seconds: list[float]
     seeds: int
     reference_spp: int
     table_spp: int
     table_seconds: float | str | None  # a seconds budget, MATCHED or None
     threads_per_job: int
-    crop: tuple | None
+    crop: tuple[int, int, int, int] | None
     # spp budgets at which each fixed-spp technique's render time becomes an equal-time budget
-    matched_spp: list = field(default_factory=list)
+    matched_spp: list[int] = field(default_factory=list)
 
 
 @dataclass
 class Technique:
     name: str
     label: str
-    integrator: dict
+    integrator: Integrator
     fixed_spp: bool = False  # renders a fixed spp and cannot honour --time-limit
 
 
@@ -65,22 +73,22 @@ class PaperNumbers:
     source: str
     metric: str
     spp: int
-    values: dict  # technique -> the paper's number
+    values: dict[str, float]  # technique -> the paper's number
 
 
 @dataclass
 class ThresholdCheck:
     technique: str
     spp: int
-    max_error: float | None
-    min_gain: float | None
+    max_error: float | None = None
+    min_gain: float | None = None
 
 
 @dataclass
 class Thresholds:
     profile: str
     method: str
-    checks: list
+    checks: list[ThresholdCheck]
 
 
 @dataclass
@@ -90,129 +98,48 @@ class Experiment:
     config_sha256: str  # of the document without its thresholds (calibrating keeps results)
     description: str
     scene: Path
-    overrides: dict
-    techniques: dict  # name -> Technique, in config order
+    overrides: dict[str, Any]  # JSON pointer -> value
+    techniques: dict[str, Technique]  # in config order
     baseline: str
-    metrics: list  # the first is the primary metric
-    reference_integrator: dict
-    profiles: dict
+    metrics: list[str]  # the first is the primary metric
+    reference_integrator: Integrator
+    profiles: dict[str, Profile]
     relmse_reject: float
-    paper: list = field(default_factory=list)
+    paper: list[PaperNumbers] = field(default_factory=list)
     thresholds: Thresholds | None = None
 
     @property
-    def paper_name(self):
+    def paper_name(self) -> str:
         return self.id.split("/")[0]
 
     @property
-    def figure(self):
+    def figure(self) -> str:
         return self.id.split("/")[1]
 
     @property
-    def primary_metric(self):
+    def primary_metric(self) -> str:
         return self.metrics[0]
 
 
-class _Reader:
-    """Typed access to one JSON object that remembers its pointer and rejects unknown keys."""
-
-    def __init__(self, file, value, pointer=""):
-        self.file, self.value, self.pointer = file, value, pointer
-        if not isinstance(value, dict):
-            self.fail("expected an object")
-        self.used = set()
-
-    def fail(self, message, key=None):
-        pointer = self.pointer if key is None else f"{self.pointer}/{key}"
-        raise ConfigError(self.file, pointer, message)
-
-    def has(self, key):
-        return key in self.value
-
-    def raw(self, key, required=True, default=None):
-        """The value at key; `default` when it is absent and optional. A JSON null is a
-        value, which every typed accessor rejects."""
-        self.used.add(key)
-        if key not in self.value:
-            if required:
-                self.fail("required key is missing", key)
-            return default
-        return self.value[key]
-
-    def child(self, key):
-        return _Reader(self.file, self.raw(key), f"{self.pointer}/{key}")
-
-    def string(self, key, required=True, default=None):
-        v = self.raw(key, required, ABSENT)
-        if v is ABSENT:
-            return default
-        if not (isinstance(v, str) and v):
-            self.fail("expected a non-empty string", key)
-        return v
-
-    def integer(self, key, minimum, required=True, default=None):
-        v = self.raw(key, required, ABSENT)
-        if v is ABSENT:
-            return default
-        if not (isinstance(v, int) and not isinstance(v, bool)) or v < minimum:
-            self.fail(f"expected an integer >= {minimum}", key)
-        return v
-
-    def positive(self, key, required=True, default=None):
-        v = self.raw(key, required, ABSENT)
-        if v is ABSENT:
-            return default
-        if not _is_positive_number(v):
-            self.fail("expected a positive finite number", key)
-        return float(v)
-
-    def boolean(self, key, default):
-        v = self.raw(key, False, ABSENT)
-        if v is ABSENT:
-            return default
-        if not isinstance(v, bool):
-            self.fail("expected true or false", key)
-        return v
-
-    def fraction(self, key, upper, default):
-        v = self.raw(key, False, ABSENT)
-        if v is ABSENT:
-            return default
-        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < upper):
-            self.fail(f"expected a number in [0, {upper})", key)
-        return float(v)
-
-    def finish(self):
-        unknown = sorted(set(self.value) - self.used)
-        if unknown:
-            self.fail(f"unknown key (expected one of: {', '.join(sorted(self.used))})",
-                      unknown[0])
-
-
-def _is_positive_number(v):
-    return (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            and v > 0)
-
-
-def _strictly_increasing(values):
-    return all(a < b for a, b in zip(values, values[1:]))
-
-
-def _reject_duplicate_keys(pairs):
-    keys = [k for k, _ in pairs]
-    duplicates = sorted({k for k in keys if keys.count(k) > 1})
-    if duplicates:
-        raise ValueError(f"duplicate key \"{duplicates[0]}\"")
-    return dict(pairs)
-
-
-def _reject_constant(name):
-    raise ValueError(f"{name} is not JSON")
-
-
-def load(file):
+def load(file: str | Path) -> Experiment:
     """Loads and validates one experiment config. Raises ConfigError."""
     file = Path(file)
+    doc = _parse(file)
+    error = best_match(_validator().iter_errors(doc))
+    if error is not None:
+        raise _schema_error(file, error)
+    disagreement = next(_disagreements(doc), None)
+    if disagreement is not None:
+        raise ConfigError(file, *disagreement)
+    return _experiment(file, doc)
+
+
+def json_pointer(*keys: str | int) -> str:
+    """RFC 6901: "/" before each key, and "~" and "/" inside keys escaped."""
+    return "".join("/" + str(k).replace("~", "~0").replace("/", "~1") for k in keys)
+
+
+def _parse(file: Path) -> Any:
     try:
         text = file.read_text(encoding="utf-8")
     except OSError as e:
@@ -220,230 +147,211 @@ def load(file):
     except UnicodeDecodeError as e:
         raise ConfigError(file, "", f"not UTF-8 text: {e.reason} at byte {e.start}") from None
     try:
-        doc = json.loads(text, object_pairs_hook=_reject_duplicate_keys,
-                         parse_constant=_reject_constant)
+        return json.loads(text, object_pairs_hook=_reject_duplicate_keys,
+                          parse_constant=_reject_constant, parse_float=_finite_float)
     except ValueError as e:
         raise ConfigError(file, "", f"malformed JSON: {e}") from None
-    r = _Reader(file, doc)
+
+
+def _reject_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    keys = [k for k, _ in pairs]
+    duplicates = sorted({k for k in keys if keys.count(k) > 1})
+    if duplicates:
+        raise ValueError(f"duplicate key \"{duplicates[0]}\"")
+    return dict(pairs)
+
+
+def _reject_constant(name: str) -> None:
+    raise ValueError(f"{name} is not JSON")
+
+
+def _finite_float(text: str) -> float:
+    """Python reads 1e999 as infinity, which no JSON number is."""
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(f"{text} is too large for a double")
+    return value
+
+
+def _is_integer(checker: Any, instance: Any) -> bool:
+    """JSON Schema's "integer" also admits 16.0; budgets and seeds become command-line
+    arguments and file names, where 16.0 would read "16.0", so here an integer is a number
+    written without a fraction."""
+    return isinstance(instance, int) and not isinstance(instance, bool)
+
+
+@functools.cache
+def _validator() -> Validator:
+    draft = jsonschema.Draft202012Validator
+    strict = jsonschema.validators.extend(
+        draft, type_checker=draft.TYPE_CHECKER.redefine("integer", _is_integer))
+    return strict(json.loads(SCHEMA_FILE.read_text(encoding="utf-8")))
+
+
+def _schema_error(file: Path, error: ValidationError) -> ConfigError:
+    """One line naming the pointer of the bad value, or of the bad, unknown or missing key."""
+    path = list(error.absolute_path)
+    if error.validator == "additionalProperties":
+        known = sorted(error.schema["properties"])
+        unknown = min(set(error.instance) - set(known))
+        return ConfigError(file, json_pointer(*path, unknown),
+                           f"unknown key (expected one of: {', '.join(known)})")
+    if error.validator == "required":
+        missing = next(k for k in error.validator_value if k not in error.instance)
+        return ConfigError(file, json_pointer(*path, missing), "required key is missing")
+    if "propertyNames" in error.absolute_schema_path:  # the instance is the key itself
+        return ConfigError(file, json_pointer(*path, error.instance), _message(error))
+    return ConfigError(file, json_pointer(*path),
+                       f"{_message(error)}, got {_abbreviated(error.instance)}")
+
+
+def _message(error: ValidationError) -> str:
+    """The schema's "errorMessage" (an extension VS Code shows too) of the subschema that
+    failed or, for a branch of an anyOf, of the anyOf's; jsonschema's wording where there is
+    none. An enum's message lists its values."""
+    holder: ValidationError | None = error
+    while holder is not None and "errorMessage" not in holder.schema:
+        holder = holder.parent
+    text = error.message if holder is None else holder.schema["errorMessage"]
+    if error.validator == "enum":
+        text += f" (known: {', '.join(map(str, error.validator_value))})"
+    return text
+
+
+def _abbreviated(value: Any) -> str:
+    text = json.dumps(value, ensure_ascii=False)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
+    """(pointer, message) of each value that a structurally valid document cannot have
+    because of another field, or because the scene file is absent."""
+    if not _scene(doc).is_file():
+        yield "/scene", (f"scene file not found: {doc['scene']} (paths are relative to the "
+                         "repository root)")
+    for name in PROFILES:
+        yield from _profile_disagreements(name, doc["profiles"][name])
+    if doc["baseline"] not in doc["techniques"]:
+        yield "/baseline", "must name one of the techniques"
+    if not any(t.get("fixed_spp", False) for t in doc["techniques"].values()):
+        for name in PROFILES:
+            if "matched_spp" in doc["profiles"][name]:
+                yield (json_pointer("profiles", name, "matched_spp"),
+                       "needs a technique with \"fixed_spp\": true (the budgets are the render "
+                       "times of such techniques)")
+    for pointer, entry in _paper_entries(doc):
+        yield from _paper_disagreements(doc, pointer, entry)
+    if "thresholds" in doc:
+        yield from _threshold_disagreements(doc)
+
+
+def _scene(doc: dict[str, Any]) -> Path:
+    return (paths.ROOT / doc["scene"]).resolve()
+
+
+def _strictly_increasing(values: list[float]) -> bool:
+    return all(a < b for a, b in zip(values, values[1:]))
+
+
+def _profile_disagreements(name: str, p: dict[str, Any]) -> Iterator[tuple[str, str]]:
+    at = functools.partial(json_pointer, "profiles", name)
+    for key in ("spp", "seconds", "matched_spp"):
+        if not _strictly_increasing(p.get(key, [])):
+            yield at(key), "must be strictly increasing"
+    for i, spp in enumerate(p.get("matched_spp", [])):
+        if spp not in p["spp"]:
+            yield at("matched_spp", i), "must be one of the profile's spp budgets"
+    table = p["table"]
+    if table["spp"] not in p["spp"]:
+        yield at("table", "spp"), "must be one of the profile's spp budgets"
+    seconds = table.get("seconds")
+    if seconds == MATCHED and table["spp"] not in p.get("matched_spp", []):
+        yield at("table", "seconds"), (f"\"{MATCHED}\" needs the table's spp ({table['spp']}) "
+                                       "in the profile's matched_spp")
+    if seconds not in (None, MATCHED, *p.get("seconds", [])):
+        yield at("table", "seconds"), (f"must be one of the profile's seconds budgets or "
+                                       f"\"{MATCHED}\"")
+    crop, (width, height) = p.get("crop"), p["resolution"]
+    if crop and (crop[0] + crop[2] > width or crop[1] + crop[3] > height):
+        yield at("crop"), f"expected [x, y, width, height] inside the image ({width}x{height})"
+
+
+def _paper_entries(doc: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+    """(pointer, entry) of the paper's numbers: one object, or a list of them."""
+    paper = doc.get("paper", [])
+    if isinstance(paper, dict):
+        return [("/paper", paper)]
+    return [(json_pointer("paper", i), entry) for i, entry in enumerate(paper)]
+
+
+def _paper_disagreements(doc: dict[str, Any], pointer: str,
+                         entry: dict[str, Any]) -> Iterator[tuple[str, str]]:
+    if entry["metric"] not in doc["metrics"]:
+        yield f"{pointer}/metric", f"\"{entry['metric']}\" is not one of the experiment's metrics"
+    for name in PROFILES:
+        if entry["spp"] not in doc["profiles"][name]["spp"]:
+            yield f"{pointer}/spp", f"the {name} profile's spp budgets must include the paper's"
+    for technique in entry["values"]:
+        if technique not in doc["techniques"]:
+            yield pointer + json_pointer("values", technique), "not one of the techniques"
+
+
+def _threshold_disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
+    thresholds, primary = doc["thresholds"], doc["metrics"][0]
+    if METRICS[primary] or primary in EFFICIENCY_OF:
+        yield "/thresholds", (f"thresholds need an error as the primary metric, not {primary}: "
+                              "an efficiency depends on the machine's speed, so a check on it "
+                              "could flake")
+    profile = thresholds["profile"]
+    for i, check in enumerate(thresholds["checks"]):
+        at = functools.partial(json_pointer, "thresholds", "checks", i)
+        if check["technique"] not in doc["techniques"]:
+            yield at("technique"), "not one of the techniques"
+        if check["spp"] not in doc["profiles"][profile]["spp"]:
+            yield at("spp"), f"not one of the {profile} profile's spp budgets"
+        if "min_gain" in check and check["technique"] == doc["baseline"]:
+            yield at("min_gain"), "the baseline has no gain over itself"
+
+
+def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
+    """The Experiment of a document that passed every check."""
     without_thresholds = {k: v for k, v in doc.items() if k != "thresholds"}
-    exp = Experiment(
+    return Experiment(
         id=paths.experiment_id(file),
         file=file,
         config_sha256=hashlib.sha256(
             json.dumps(without_thresholds, sort_keys=True).encode()).hexdigest(),
-        description=r.string("description"),
-        scene=_scene(r),
-        overrides=_overrides(r),
-        techniques=_techniques(r),
-        baseline=r.string("baseline"),
-        metrics=_metrics(r),
-        reference_integrator=_reference(r),
-        profiles=_profiles(r),
-        relmse_reject=r.fraction("relmse_reject", 0.5, 0.0),
+        description=doc["description"],
+        scene=_scene(doc),
+        overrides=doc.get("set", {}),
+        techniques={name: Technique(name, t.get("label", name), t["integrator"],
+                                    t.get("fixed_spp", False))
+                    for name, t in doc["techniques"].items()},
+        baseline=doc["baseline"],
+        metrics=doc["metrics"],
+        reference_integrator=doc["reference"]["integrator"],
+        profiles={name: _profile(name, doc["profiles"][name]) for name in PROFILES},
+        relmse_reject=float(doc.get("relmse_reject", 0.0)),
+        paper=[PaperNumbers(**entry) for _, entry in _paper_entries(doc)],
+        thresholds=_thresholds(doc["thresholds"]) if "thresholds" in doc else None,
     )
-    if exp.baseline not in exp.techniques:
-        r.fail("must name one of the techniques", "baseline")
-    if not any(t.fixed_spp for t in exp.techniques.values()):
-        for profile in exp.profiles.values():
-            if profile.matched_spp:
-                raise ConfigError(file, f"/profiles/{profile.name}/matched_spp",
-                                  "needs a technique with \"fixed_spp\": true (the budgets "
-                                  "are the render times of such techniques)")
-    if r.has("paper"):
-        exp.paper = _paper(r, exp)
-    if r.has("thresholds"):
-        exp.thresholds = _thresholds(r, exp)
-    r.finish()
-    return exp
 
 
-def _scene(r):
-    scene = r.string("scene")
-    path = (paths.ROOT / scene).resolve()
-    if not path.is_file():
-        r.fail(f"scene file not found: {scene} (paths are relative to the repository root)",
-               "scene")
-    return path
-
-
-def _overrides(r):
-    value = r.raw("set", required=False, default={})
-    if not isinstance(value, dict):
-        r.fail("expected an object of JSON pointer -> value", "set")
-    for pointer in value:
-        if not pointer.startswith("/"):
-            r.fail(f"keys are JSON pointers starting with '/', got \"{pointer}\"", "set")
-        owned = [p for p in HARNESS_OWNED if pointer == p or pointer.startswith(p + "/")]
-        if owned:
-            r.fail(f"{pointer} is set by the harness for each render (techniques, budgets, "
-                   "seeds, profiles' resolution)", "set")
-    return value
-
-
-def _integrator(reader, key):
-    value = reader.raw(key)
-    if not isinstance(value, dict) or not isinstance(value.get("type"), str):
-        reader.fail("expected an integrator object with a \"type\"", key)
-    return value
-
-
-def _techniques(r):
-    t = r.child("techniques")
-    if not t.value:
-        t.fail("at least one technique is required")
-    out = {}
-    for name in t.value:
-        if not NAME_PATTERN.fullmatch(name):
-            t.fail("technique names use only letters, digits, '_' and '-'", name)
-        tr = t.child(name)
-        out[name] = Technique(name, tr.string("label", required=False, default=name),
-                              _integrator(tr, "integrator"), tr.boolean("fixed_spp", False))
-        tr.finish()
-    t.finish()
-    return out
-
-
-def _metrics(r):
-    value = r.raw("metrics")
-    if not isinstance(value, list) or not value:
-        r.fail("expected a non-empty list of metric names", "metrics")
-    for i, m in enumerate(value):
-        if m not in METRICS:
-            r.fail(f"unknown metric \"{m}\" (known: {', '.join(METRICS)})", f"metrics/{i}")
-    if len(set(value)) != len(value):
-        r.fail("metrics are listed twice", "metrics")
-    return value
-
-
-def _reference(r):
-    ref = r.child("reference")
-    integrator = _integrator(ref, "integrator")
-    ref.finish()
-    return integrator
-
-
-def _profiles(r):
-    p = r.child("profiles")
-    out = {name: _profile(p.child(name), name) for name in PROFILES}
-    p.finish()
-    return out
-
-
-def _profile(p, name):
-    res = p.raw("resolution")
-    if not (isinstance(res, list) and len(res) == 2
-            and all(isinstance(v, int) and not isinstance(v, bool) and v >= 1 for v in res)):
-        p.fail("expected [width, height] with positive integers", "resolution")
-    spp = p.raw("spp")
-    if not (isinstance(spp, list) and spp
-            and all(isinstance(v, int) and not isinstance(v, bool) and v >= 1 for v in spp)
-            and _strictly_increasing(spp)):
-        p.fail("expected a strictly increasing, non-empty list of positive integers", "spp")
-    seconds = p.raw("seconds", required=False, default=[])
-    if not (isinstance(seconds, list) and all(_is_positive_number(v) for v in seconds)
-            and _strictly_increasing(seconds)):
-        p.fail("expected a strictly increasing list of positive numbers", "seconds")
-    seeds = p.integer("seeds", MIN_SEEDS)
-    reference_spp = p.integer("reference_spp", 2)
-    if reference_spp % 2:
-        p.fail("must be even (the reference is two independent halves)", "reference_spp")
-    matched_spp = p.raw("matched_spp", required=False, default=ABSENT)
-    if matched_spp is ABSENT:
-        matched_spp = []
-    elif not (isinstance(matched_spp, list) and matched_spp
-              and all(isinstance(v, int) and not isinstance(v, bool) for v in matched_spp)
-              and _strictly_increasing(matched_spp)):
-        p.fail("expected a strictly increasing, non-empty list of the profile's spp budgets",
-               "matched_spp")
-    for i, v in enumerate(matched_spp):
-        if v not in spp:
-            p.fail("must be one of the profile's spp budgets", f"matched_spp/{i}")
-    table = p.child("table")
-    table_spp = table.integer("spp", 1)
-    if table_spp not in spp:
-        table.fail("must be one of the profile's spp budgets", "spp")
-    table_seconds = table.raw("seconds", required=False, default=ABSENT)
-    if table_seconds is ABSENT:
-        table_seconds = None
-    elif table_seconds == MATCHED:
-        if table_spp not in matched_spp:
-            table.fail(f"\"{MATCHED}\" needs the table's spp ({table_spp}) in the profile's "
-                       "matched_spp", "seconds")
-    elif not (_is_positive_number(table_seconds) and table_seconds in seconds):
-        table.fail(f"must be one of the profile's seconds budgets or \"{MATCHED}\"", "seconds")
-    else:
+def _profile(name: str, p: dict[str, Any]) -> Profile:
+    table_seconds = p["table"].get("seconds")
+    if table_seconds not in (None, MATCHED):
         table_seconds = float(table_seconds)
-    table.finish()
-    crop = p.raw("crop", required=False)
-    if crop is not None:
-        ok = (isinstance(crop, list) and len(crop) == 4
-              and all(isinstance(v, int) and not isinstance(v, bool) and v >= 0 for v in crop)
-              and crop[2] > 0 and crop[3] > 0 and crop[0] + crop[2] <= res[0]
-              and crop[1] + crop[3] <= res[1])
-        if not ok:
-            p.fail("expected [x, y, width, height] inside the image", "crop")
-        crop = tuple(crop)
-    profile = Profile(name, tuple(res), spp, [float(s) for s in seconds], seeds, reference_spp,
-                      table_spp, table_seconds, p.integer("threads_per_job", 1, False, 1), crop,
-                      matched_spp)
-    p.finish()
-    return profile
+    crop = p.get("crop")
+    return Profile(name, tuple(p["resolution"]), p["spp"],
+                   [float(s) for s in p.get("seconds", [])], p["seeds"], p["reference_spp"],
+                   p["table"]["spp"], table_seconds, p.get("threads_per_job", 1),
+                   tuple(crop) if crop else None, p.get("matched_spp", []))
 
 
-def _paper(r, exp):
-    value = r.raw("paper")
-    entries = value if isinstance(value, list) else [value]
-    out = []
-    for i, entry in enumerate(entries):
-        pointer = "/paper" + (f"/{i}" if isinstance(value, list) else "")
-        e = _Reader(r.file, entry, pointer)
-        metric = e.string("metric")
-        if metric not in exp.metrics:
-            e.fail(f"\"{metric}\" is not one of the experiment's metrics", "metric")
-        spp = e.integer("spp", 1)
-        for profile in exp.profiles.values():
-            if spp not in profile.spp:
-                e.fail(f"the {profile.name} profile's spp budgets must include the paper's",
-                       "spp")
-        values = e.child("values")
-        for name in values.value:
-            if name not in exp.techniques:
-                values.fail("not one of the techniques", name)
-            values.positive(name)
-        values.finish()
-        out.append(PaperNumbers(e.string("source"), metric, spp, dict(values.value)))
-        e.finish()
-    return out
+def _thresholds(t: dict[str, Any]) -> Thresholds:
+    def limit(check: dict[str, Any], key: str) -> float | None:
+        return float(check[key]) if key in check else None
 
-
-def _thresholds(r, exp):
-    t = r.child("thresholds")
-    if METRICS[exp.primary_metric] or exp.primary_metric in EFFICIENCY_OF:
-        t.fail(f"thresholds need an error as the primary metric, not {exp.primary_metric}: an "
-               "efficiency depends on the machine's speed, so a check on it could flake")
-    profile = t.string("profile")
-    if profile not in PROFILES:
-        t.fail(f"expected one of {', '.join(PROFILES)}", "profile")
-    method = t.string("method")
-    checks_value = t.raw("checks")
-    if not isinstance(checks_value, list) or not checks_value:
-        t.fail("expected a non-empty list", "checks")
-    checks = []
-    for i in range(len(checks_value)):
-        c = _Reader(r.file, checks_value[i], f"/thresholds/checks/{i}")
-        technique = c.string("technique")
-        if technique not in exp.techniques:
-            c.fail("not one of the techniques", "technique")
-        spp = c.integer("spp", 1)
-        if spp not in exp.profiles[profile].spp:
-            c.fail(f"not one of the {profile} profile's spp budgets", "spp")
-        max_error = c.positive("max_error", required=False)
-        min_gain = c.positive("min_gain", required=False)
-        if max_error is None and min_gain is None:
-            c.fail("give max_error, min_gain or both")
-        if min_gain is not None and technique == exp.baseline:
-            c.fail("the baseline has no gain over itself", "min_gain")
-        checks.append(ThresholdCheck(technique, spp, max_error, min_gain))
-        c.finish()
-    t.finish()
-    return Thresholds(profile, method, checks)
+    return Thresholds(t["profile"], t["method"],
+                      [ThresholdCheck(c["technique"], c["spp"], limit(c, "max_error"),
+                                      limit(c, "min_gain")) for c in t["checks"]])

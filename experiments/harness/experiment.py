@@ -9,65 +9,61 @@ own. With a profile's matched_spp, its measured render time at each of those spp
 equal-time budget: once the first phase (every equal-sample and equal-time run) is done, a
 second phase renders every time-capable technique with that time limit, and the fixed-spp
 technique's runs at that spp are entered again as equal-time records at that budget."""
+import dataclasses
 import datetime
 import math
 import shutil
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from . import config, jobs, paths, provenance, references, renders, stats
+from .config import Experiment, Profile
 from .errors import HarnessFailure
+from .records import (SPP, TIME, MatchedBudget, OriginalBudget, Run, RunRecord, SummaryEntry,
+                      TechniqueBudget, group_by_key, to_json)
 
 
-@dataclass(frozen=True)
-class Run:
-    technique: str
-    kind: str  # "spp" (equal samples) or "time" (equal time)
-    budget: float  # samples per pixel or seconds
-    seed: int
-
-    def file_name(self):
-        budget = f"{self.budget:.12g}{'spp' if self.kind == 'spp' else 's'}"
-        return Path(self.technique) / f"{budget}_seed{self.seed}.exr"
-
-
-def expand(exp, profile, only=None):
-    """Every run of the profile, or only those whose (technique, kind, budget) is in `only`.
+def expand(exp: Experiment, profile: Profile,
+           only: set[TechniqueBudget] | None = None) -> list[Run]:
+    """Every run of the profile, or only those whose technique and budget are in `only`.
     Interleaved (seed, then budget, then technique innermost) so that the techniques share
     the machine's load pattern: consecutive runs of one budget differ only in technique.
     Fixed-spp techniques have no equal-time runs (see matched_runs)."""
-    budgets = [("spp", s) for s in profile.spp] + [("time", s) for s in profile.seconds]
+    budgets = [(SPP, s) for s in profile.spp] + [(TIME, s) for s in profile.seconds]
     runs = []
     for seed in range(profile.seeds):
         for kind, budget in budgets:
             for name, technique in exp.techniques.items():
-                if kind == "time" and technique.fixed_spp:
+                if kind == TIME and technique.fixed_spp:
                     continue
-                if only is None or (name, kind, budget) in only:
-                    runs.append(Run(name, kind, budget, seed))
+                run = Run(name, kind, budget, seed)
+                if only is None or run.key in only:
+                    runs.append(run)
     return runs
 
 
-def matched_seconds(times):
+def matched_seconds(times: list[float]) -> float:
     """The equal-time budget matched to render times over seeds: their mean, to 1 ms, at
     least 1 ms (the renderer takes a time limit of 0 as none)."""
     return max(round(math.fsum(times) / len(times), 3), 0.001)
 
 
-def matched_budgets(exp, profile, records):
-    """[{"technique", "spp", "seconds"}]: for each fixed-spp technique and each of the
-    profile's matched_spp, the equal-time budget of its measured render times at that spp."""
+def matched_budgets(exp: Experiment, profile: Profile,
+                    records: list[RunRecord]) -> list[MatchedBudget]:
+    """For each fixed-spp technique and each of the profile's matched_spp, the equal-time
+    budget of its measured render times at that spp."""
+    groups = group_by_key(records)
     matched = []
     for name, technique in exp.techniques.items():
         if not technique.fixed_spp:
             continue
         spp_of = {}
         for spp in profile.matched_spp:
-            times = [r["time"] for r in records
-                     if r["technique"] == name and r["kind"] == "spp" and r["budget"] == spp]
+            times = [r.time for r in groups.get(TechniqueBudget(name, SPP, spp), [])]
             if not times:
                 raise HarnessFailure(f"{exp.id}: no {spp}-spp runs of {name} to match time to")
             seconds = matched_seconds(times)
@@ -77,72 +73,72 @@ def matched_budgets(exp, profile, records):
                     f"and {spp} spp, so the two equal-time budgets would be one; render larger "
                     "images or drop one of matched_spp")
             spp_of[seconds] = spp
-            matched.append({"technique": name, "spp": spp, "seconds": seconds})
+            matched.append(MatchedBudget(name, spp, seconds))
     return matched
 
 
-def matched_runs(exp, profile, matched, records):
+def matched_runs(exp: Experiment, profile: Profile, matched: list[MatchedBudget],
+                 records: list[RunRecord]) -> list[Run]:
     """The runs of every time-capable technique at the matched budgets, every seed, except
     those `records` already hold (a matched time equal to one of the profile's seconds
     budgets is the same budget). Interleaved as in expand."""
-    done = {(r["technique"], r["kind"], r["budget"]) for r in records}
-    budgets = sorted({m["seconds"] for m in matched})
+    done = {r.key for r in records}
+    budgets = sorted({m.seconds for m in matched})
     runs = []
     for seed in range(profile.seeds):
         for budget in budgets:
             for name, technique in exp.techniques.items():
-                if not technique.fixed_spp and (name, "time", budget) not in done:
-                    runs.append(Run(name, "time", budget, seed))
+                run = Run(name, TIME, budget, seed)
+                if not technique.fixed_spp and run.key not in done:
+                    runs.append(run)
     return runs
 
 
-def matched_duplicates(matched, records):
+def matched_duplicates(matched: list[MatchedBudget],
+                       records: list[RunRecord]) -> list[RunRecord]:
     """Each fixed-spp technique's records at a matched spp entered again as equal-time records
     at the matched seconds (the same renders, files and metrics), so that summaries and gains
-    at equal time need nothing special. "duplicate_of" marks them for slopes and plots."""
-    return [{**r, "kind": "time", "budget": m["seconds"],
-             "duplicate_of": {"kind": "spp", "budget": m["spp"]}}
-            for m in matched for r in records
-            if r["technique"] == m["technique"] and r["kind"] == "spp" and r["budget"] == m["spp"]]
+    at equal time need nothing special. duplicate_of marks them for slopes and plots."""
+    groups = group_by_key(records)
+    return [dataclasses.replace(r, kind=TIME, budget=m.seconds,
+                                duplicate_of=OriginalBudget(SPP, m.spp))
+            for m in matched for r in groups.get(TechniqueBudget(m.technique, SPP, m.spp), [])]
 
 
-def parallel_jobs(profile, requested):
+def parallel_jobs(profile: Profile, requested: int) -> int:
     """Renders at once: never more threads in all than cores, so every render has its
     threads' cores to itself and an equal-time budget means equal compute."""
     return max(1, min(requested, jobs.default_jobs() // profile.threads_per_job))
 
 
-def _estimated_cost(run, profile):
+def _estimated_cost(run: Run, profile: Profile) -> float:
     """Seconds, roughly (1 µs per sample and a fixed process cost), for the ETA only."""
-    if run.kind == "time":
+    if run.kind == TIME:
         return run.budget + 0.3
     return run.budget * profile.resolution[0] * profile.resolution[1] * 1e-6 + 0.3
 
 
-def execute(exp, profile, runs, out_dir, reference_file, workers, phase=None):
+def execute(exp: Experiment, profile: Profile, runs: list[Run], out_dir: Path,
+            reference_file: Path, workers: int, phase: str | None = None) -> list[RunRecord]:
     """Renders and measures every run; returns one record per run, in run order."""
     for run in runs:
-        if run.kind == "time" and exp.techniques[run.technique].fixed_spp:
+        if run.kind == TIME and exp.techniques[run.technique].fixed_spp:
             raise ValueError(f"{run.technique} renders a fixed spp; it takes no time limit")
 
-    def job(run):
-        def work():
+    def job(run: Run) -> Callable[[], RunRecord]:
+        def work() -> RunRecord:
             out = out_dir / run.file_name()
             out.parent.mkdir(parents=True, exist_ok=True)
             integrator = exp.techniques[run.technique].integrator
-            if run.kind == "spp":
+            if run.kind == SPP:
                 renders.render(exp, profile, integrator, out, run.seed, spp=int(run.budget),
                                threads=profile.threads_per_job)
             else:
                 renders.render(exp, profile, integrator, out, run.seed, seconds=run.budget,
                                threads=profile.threads_per_job)
             m = renders.compare(out, reference_file, exp.relmse_reject)
-            if "time" not in m or "spp" not in m:
-                raise HarnessFailure(f"{out}: no renderer.renderTime or renderer.spp metadata")
-            return {"technique": run.technique, "kind": run.kind, "budget": run.budget,
-                    "seed": run.seed, "spp": m["spp"], "time": m["time"],
-                    "file": paths.relative(out),
-                    "metrics": {name: m.get(name) for name in config.METRICS}}
+            return RunRecord(run.technique, run.kind, run.budget, run.seed, spp=m.spp,
+                             time=m.time, file=paths.relative(out), metrics=m.metrics)
         return work
 
     costs = [_estimated_cost(r, profile) for r in runs]
@@ -150,100 +146,86 @@ def execute(exp, profile, runs, out_dir, reference_file, workers, phase=None):
     return jobs.run_parallel(label, [job(r) for r in runs], costs, parallel_jobs(profile, workers))
 
 
-def _groups(records):
-    """(technique, kind, budget) -> that budget's records, ordered by seed."""
-    groups = {}
-    for r in sorted(records, key=lambda r: r["seed"]):
-        groups.setdefault((r["technique"], r["kind"], r["budget"]), []).append(r)
-    return groups
-
-
-def _column(group, metric):
-    values = [r["metrics"][metric] for r in group]
+def _column(group: list[RunRecord], metric: str) -> list[float] | None:
+    values = [r.metrics[metric] for r in group]
     return None if any(v is None for v in values) else values
 
 
-def _efficiency_columns(group, metric):
+def _efficiency_columns(group: list[RunRecord], metric: str) -> list[list[float]] | None:
     """The (time, error) columns of efficiency 1/(T·error)."""
     error = _column(group, config.EFFICIENCY_OF[metric])
-    return None if error is None else [[r["time"] for r in group], error]
+    return None if error is None else [[r.time for r in group], error]
 
 
-def _metric_summary(group, metric):
+def _metric_summary(group: list[RunRecord], metric: str) -> stats.MetricSummary | None:
     """Mean and interval of a metric over seeds. An efficiency is 1/(mean T · mean error)
     with a paired delta-method interval, not a mean of per-seed efficiencies."""
     if metric in config.EFFICIENCY_OF:
         columns = _efficiency_columns(group, metric)
         if columns is None or min(sum(c) for c in columns) <= 0:
             return None
-        e = stats.mean_power_product(columns, (-1, -1))
-        return {"mean": e.value, "stderr": e.stderr, "ci95": list(e.ci95), "n": len(group),
-                "estimator": "1/(mean time x mean error)"}
+        return stats.efficiency(*columns)
     values = _column(group, metric)
-    return None if values is None else stats.estimate(values).to_json()
+    return None if values is None else stats.estimate(values)
 
 
-def _gain(base_group, group, metric):
+def _gain(base_group: list[RunRecord], group: list[RunRecord], metric: str) -> stats.Gain | None:
     """The technique's gain over the baseline at one budget, paired by seed; None when it is
     undefined (a zero error, a missing metric)."""
-    if [r["seed"] for r in base_group] != [r["seed"] for r in group]:
+    if [r.seed for r in base_group] != [r.seed for r in group]:
         raise ValueError("the baseline and the technique were run with different seeds")
     try:
         if metric in config.EFFICIENCY_OF:
             b, t = _efficiency_columns(base_group, metric), _efficiency_columns(group, metric)
             if b is None or t is None:
                 return None
-            return stats.mean_power_product(b + t, (1, 1, -1, -1)).to_json()
+            return stats.mean_power_product(b + t, (1, 1, -1, -1))
         b, t = _column(base_group, metric), _column(group, metric)
         if b is None or t is None:
             return None
-        return stats.gain(b, t, config.METRICS[metric]).to_json()
+        return stats.gain(b, t, config.METRICS[metric])
     except ValueError:  # a zero mean
         return None
 
 
-def summarise(exp, records):
-    """Per (technique, budget): each metric's mean and 95 % interval over seeds, the spp and
+def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
+    """Per technique and budget: each metric's mean and 95 % interval over seeds, the spp and
     time reached, and the gain over the baseline at the same budget. Duplicated records (see
     matched_duplicates) make a fixed-spp technique's entry at a matched time budget."""
-    groups = _groups(records)
+    groups = group_by_key(sorted(records, key=lambda r: r.seed))
     summary = []
-    for (technique, kind, budget), group in groups.items():
-        entry = {
-            "technique": technique, "kind": kind, "budget": budget,
-            "spp": stats.estimate([r["spp"] for r in group]).to_json(),
-            "time": stats.estimate([r["time"] for r in group]).to_json(),
-            "metrics": {m: _metric_summary(group, m) for m in exp.metrics},
-            "gain": {},
-        }
-        base_group = groups.get((exp.baseline, kind, budget))
-        if technique != exp.baseline and base_group:
-            entry["gain"] = {m: _gain(base_group, group, m) for m in exp.metrics}
-        if "duplicate_of" in group[0]:
-            entry["duplicate_of"] = group[0]["duplicate_of"]
-        summary.append(entry)
+    for key, group in groups.items():
+        base_group = groups.get(TechniqueBudget(exp.baseline, key.kind, key.budget))
+        compared = key.technique != exp.baseline and base_group
+        summary.append(SummaryEntry(
+            key.technique, key.kind, key.budget,
+            spp=stats.estimate([r.spp for r in group]),
+            time=stats.estimate([r.time for r in group]),
+            metrics={m: _metric_summary(group, m) for m in exp.metrics},
+            gain={m: _gain(base_group, group, m) for m in exp.metrics} if compared else {},
+            duplicate_of=group[0].duplicate_of))
     return summary
 
 
-def slopes(exp, records, scratch_dir):
+def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -> dict[str, Any]:
     """Least-squares slope of log(primary error) against log(spp) and log(time), over every
     run of each technique (all seeds and budgets), from `metrics slope`. A render entered
     twice (matched_duplicates) counts once."""
     out = {}
     for technique in exp.techniques:
-        points = [{"spp": r["spp"], "time": r["time"], "error": r["metrics"][exp.primary_metric]}
-                  for r in records if r["technique"] == technique and "duplicate_of" not in r]
+        points = [{"spp": r.spp, "time": r.time, "error": r.metrics[exp.primary_metric]}
+                  for r in records if r.technique == technique and r.duplicate_of is None]
         if len({p["spp"] for p in points}) >= 2 and all(p["error"] and p["error"] > 0
                                                          for p in points):
             out[technique] = renders.slope(points, Path(scratch_dir) / f"{technique}.json")
     return out
 
 
-def smallest_rmse(records):
-    return min(r["metrics"]["rmse"] for r in records)
+def smallest_rmse(records: list[RunRecord]) -> float:
+    return min(r.metrics["rmse"] for r in records)
 
 
-def run(exp, profile_name, workers):
+def run(exp: Experiment, profile_name: str, workers: int) -> Path:
     """Runs the whole profile and writes results/<paper>/<figure>.json. Returns its path."""
     profile = exp.profiles[profile_name]
     entry, reference_file = references.lookup(exp, profile)
@@ -280,14 +262,14 @@ def run(exp, profile_name, workers):
         "budgets": {"spp": profile.spp, "seconds": profile.seconds,
                     "matched_spp": profile.matched_spp},
         "table": {"spp": profile.table_spp, "seconds": profile.table_seconds},
-        "matched": matched,
+        "matched": [to_json(m) for m in matched],
         "crop": list(profile.crop) if profile.crop else None,
         "reference": {"file": paths.relative(reference_file), "sha256": entry["sha256"],
                       "integrator": entry["integrator"], "spp": entry["spp"],
                       "noise_rmse": entry["noise_rmse"],
                       "noise_sigma_over_mu": entry["noise_sigma_over_mu"],
                       "noise_ratio_to_smallest_error": ratio},
-        "paper": [vars(p) for p in exp.paper],
+        "paper": [to_json(p) for p in exp.paper],
         "provenance": {
             "git_commit": provenance.git_commit(),
             "git_dirty": provenance.git_dirty(),
@@ -298,9 +280,9 @@ def run(exp, profile_name, workers):
             "threads_per_job": profile.threads_per_job,
             "command": " ".join(sys.argv),
         },
-        "summary": summarise(exp, records),
+        "summary": [to_json(s) for s in summarise(exp, records)],
         "slopes": fitted,
-        "runs": records,
+        "runs": [to_json(r) for r in records],
     }
     out = paths.results_file(exp, profile.name)
     provenance.write_json_atomically(out, document)

@@ -4,73 +4,82 @@ the legend) and side-by-side crops (reference | baseline | techniques) at the ta
 A fixed-spp technique's points against time are its equal-sample runs at their mean render
 time."""
 import sys
+from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
 
-from . import paths, tables  # noqa: E402
+from . import paths, records, tables  # noqa: E402
+from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget  # noqa: E402
 
 
-def _series(doc, technique, kind):
+def _axis(entry: SummaryEntry, kind: str) -> float:
+    """An entry's position along the axis of `kind`: its mean spp or its mean render time."""
+    return (entry.spp if kind == SPP else entry.time).mean
+
+
+def _series(doc: Results, technique: str, kind: str) -> tuple[np.ndarray, ...]:
     """(x, mean, lo, hi) over a technique's budgets of one kind, x = mean spp or time. Against
     time, a fixed-spp technique's points are its equal-sample budgets (its equal-time entries
     at matched budgets are copies of some of them)."""
     metric = doc["metrics"][0]
-    axis = "spp" if kind == "spp" else "time"
-    if kind == "time" and doc["techniques"][technique].get("fixed_spp", False):
-        kind = "spp"
-    rows = sorted((s for s in doc["summary"] if s["technique"] == technique and s["kind"] == kind),
-                  key=lambda s: s[axis]["mean"])
-    x = np.array([s[axis]["mean"] for s in rows])
-    m = [s["metrics"][metric] for s in rows]
-    return (x, np.array([e["mean"] for e in m]), np.array([e["ci95"][0] for e in m]),
-            np.array([e["ci95"][1] for e in m]))
+    entries_kind = kind
+    if kind == TIME and records.fixed_spp(doc, technique):
+        entries_kind = SPP
+    rows = sorted((s for s in records.read_summary(doc)
+                   if s.technique == technique and s.kind == entries_kind),
+                  key=lambda s: _axis(s, kind))
+    m = [s.metrics[metric] for s in rows]
+    return (np.array([_axis(s, kind) for s in rows]), np.array([e.mean for e in m]),
+            np.array([e.ci95[0] for e in m]), np.array([e.ci95[1] for e in m]))
 
 
-def _panel(ax, doc, kind):
+def _panel(ax: Axes, doc: Results, kind: str) -> None:
     metric = doc["metrics"][0]
     for i, technique in enumerate(doc["techniques"]):
         x, mean, lo, hi = _series(doc, technique, kind)
         if len(x) == 0:
             continue
         colour = f"C{i}"
-        fit = doc["slopes"].get(technique, {}).get("vs_spp" if kind == "spp" else "vs_time")
+        fit = doc["slopes"].get(technique, {}).get("vs_spp" if kind == SPP else "vs_time")
         label = technique + (f"  slope {fit['slope']:.3f} ± {fit['slope_stderr']:.3f}" if fit
                              else "")
         ax.fill_between(x, np.maximum(lo, mean * 1e-3), hi, color=colour, alpha=0.2, lw=0)
         ax.plot(x, mean, "o-", color=colour, label=label, ms=4)
-    if kind == "spp":
+    if kind == SPP:
         x0 = min(doc["budgets"]["spp"])
-        first = [s for s in doc["summary"] if s["kind"] == "spp" and s["budget"] == x0]
-        y0 = max(s["metrics"][metric]["mean"] for s in first)
+        first = [s for s in records.read_summary(doc) if s.kind == SPP and s.budget == x0]
+        y0 = max(s.metrics[metric].mean for s in first)
         xs = np.array([x0, max(doc["budgets"]["spp"])], dtype=float)
         ax.plot(xs, y0 * (xs / x0) ** -0.5, "k:", lw=1, label="N^-0.5")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("samples per pixel" if kind == "spp" else "render time (s, 1 thread)")
+    ax.set_xlabel("samples per pixel" if kind == SPP else "render time (s, 1 thread)")
     ax.set_ylabel(tables.METRIC_NAMES[metric])
-    ax.set_title("equal samples" if kind == "spp" else "equal time")
+    ax.set_title("equal samples" if kind == SPP else "equal time")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
 
 
-def convergence(doc, out):
-    has_time = any(s["kind"] == "time" for s in doc["summary"])
+def convergence(doc: Results, out: Path) -> None:
+    has_time = any(s.kind == TIME for s in records.read_summary(doc))
     fig, axes = plt.subplots(1, 2 if has_time else 1, figsize=(11 if has_time else 6, 4.2),
                              squeeze=False)
-    _panel(axes[0][0], doc, "spp")
+    _panel(axes[0][0], doc, SPP)
     if has_time:
-        _panel(axes[0][1], doc, "time")
+        _panel(axes[0][1], doc, TIME)
     fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds, "
                  f"{doc['resolution'][0]}×{doc['resolution'][1]})")
     fig.tight_layout()
     _save(fig, out)
 
 
-def _read_rgb(file):
+def read_rgb(file: Path) -> np.ndarray:
     import OpenImageIO as oiio
     image = oiio.ImageInput.open(str(file))
     if image is None:
@@ -81,30 +90,30 @@ def _read_rgb(file):
     return np.asarray(pixels).reshape(spec.height, spec.width, 3)
 
 
-def _display(rgb):
+def _display(rgb: np.ndarray) -> np.ndarray:
     """Clamp and encode with the sRGB transfer curve, as the renderer's PNG previews do."""
     x = np.clip(rgb, 0.0, 1.0)
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
 
 
-def crops(doc, out):
+def crops(doc: Results, out: Path) -> bool:
     """Reference | baseline | each technique, seed 0 at the table's sample budget. Returns
     False when the renders are not on disk (results from another machine)."""
     budget = doc["table"]["spp"]
     panels = [("reference", paths.ROOT / doc["reference"]["file"])]
     techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
-    runs = {(r["technique"], r["kind"], r["budget"], r["seed"]): r for r in doc["runs"]}
+    runs = records.group_by_key(records.read_runs(doc))
     metric = doc["metrics"][0]
     for t in techniques:
-        run = runs[(t, "spp", budget, 0)]
+        run = next(r for r in runs[TechniqueBudget(t, SPP, budget)] if r.seed == 0)
         panels.append((f"{t}, {budget:g} spp\n{tables.METRIC_NAMES[metric]} "
-                       f"{run['metrics'][metric]:.3g}", paths.ROOT / run["file"]))
+                       f"{run.metrics[metric]:.3g}", paths.ROOT / run.file))
     if not all(file.exists() for _, file in panels):
         return False
     fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.8), squeeze=False,
                              layout="constrained")
     for ax, (title, file) in zip(axes[0], panels):
-        rgb = _read_rgb(file)
+        rgb = read_rgb(file)
         if doc.get("crop"):
             x, y, w, h = doc["crop"]
             rgb = rgb[y:y + h, x:x + w]
@@ -115,7 +124,7 @@ def crops(doc, out):
     return True
 
 
-def _save(fig, out):
+def _save(fig: Figure, out: Path) -> None:
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(f".{out.stem}.tmp.png")
     fig.savefig(tmp, dpi=110)
@@ -123,12 +132,12 @@ def _save(fig, out):
     tmp.replace(out)
 
 
-def write_all(profile_name):
+def write_all(profile_name: str) -> list[Path]:
     written = []
     suffix = paths.suffix(profile_name)
     for paper, docs in tables.load_results(profile_name).items():
         for doc in docs:
-            figure = doc["experiment"].split("/")[1]
+            figure = tables.figure_of(doc)
             out = paths.PLOTS / paper / f"{figure}_convergence{suffix}.png"
             convergence(doc, out)
             written.append(out)

@@ -6,20 +6,21 @@ import platform
 import subprocess
 import tempfile
 from pathlib import Path
+from typing import Any
 
 from . import paths
 
 
-def _git(*args):
+def _git(*args: str) -> str | None:
     proc = subprocess.run(["git", "-C", str(paths.ROOT), *args], capture_output=True, text=True)
     return proc.stdout.strip() if proc.returncode == 0 else None
 
 
-def git_commit():
+def git_commit() -> str | None:
     return _git("rev-parse", "HEAD")
 
 
-def git_dirty():
+def git_dirty() -> bool:
     """True when tracked sources differ from the commit (results/ and reference/ excluded,
     since runs write there)."""
     status = _git("status", "--porcelain", "--untracked-files=no", "--", ".",
@@ -27,7 +28,7 @@ def git_dirty():
     return bool(status)
 
 
-def machine():
+def machine() -> dict[str, str | int]:
     cpu = "unknown"
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
@@ -40,11 +41,11 @@ def machine():
             "os": platform.platform(), "python": platform.python_version()}
 
 
-def sha256_file(path):
+def sha256_file(path: str | Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
-def write_text_atomically(path, text):
+def write_text_atomically(path: str | Path, text: str) -> None:
     """Writes through a temporary sibling renamed into place: no half-written outputs."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -55,5 +56,5 @@ def write_text_atomically(path, text):
     os.replace(f.name, path)
 
 
-def write_json_atomically(path, value):
+def write_json_atomically(path: str | Path, value: Any) -> None:
     write_text_atomically(path, json.dumps(value, indent=1, ensure_ascii=False) + "\n")

@@ -9,44 +9,49 @@ import json
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 from . import jobs, paths, provenance, renders
+from .config import Experiment, Profile
 from .errors import HarnessFailure
 
 MAX_NOISE_RATIO = 0.2
+# reference/manifest.json: "<paper>/<figure>/<profile>" -> its reference's entry.
+Manifest = dict[str, dict[str, Any]]
 
 
-def file_name(exp, profile):
+def file_name(exp: Experiment, profile: Profile) -> Path:
     return Path(exp.paper_name) / f"{exp.figure}.{profile.name}.exr"
 
 
-def key(exp, profile):
+def key(exp: Experiment, profile: Profile) -> str:
     """What determines the reference image: the scene document it renders (after overrides,
     with the reference integrator and the profile's resolution; whitespace and comments of
     the file do not count) and its spp. A change makes the reference stale. Code changes do
     not: after fixing an integrator, re-render with `make references FORCE=1`."""
     spec = {
-        "scene_document_sha256": renders.check_scene(exp, profile, exp.reference_integrator),
+        "scene_document_sha256": renders.check_scene(exp, profile,
+                                                     exp.reference_integrator).scene_sha256,
         "spp": profile.reference_spp,
     }
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
 
 
-def load_manifest():
+def load_manifest() -> Manifest:
     if not paths.MANIFEST.exists():
         return {}
     return json.loads(paths.MANIFEST.read_text())
 
 
-def save_manifest(manifest):
+def save_manifest(manifest: Manifest) -> None:
     provenance.write_json_atomically(paths.MANIFEST, manifest)
 
 
-def entry_name(exp, profile):
+def entry_name(exp: Experiment, profile: Profile) -> str:
     return f"{exp.id}/{profile.name}"
 
 
-def status(exp, profile, manifest=None):
+def status(exp: Experiment, profile: Profile, manifest: Manifest | None = None) -> str:
     """'ok', 'missing' or 'stale'."""
     entry = (manifest if manifest is not None else load_manifest()).get(entry_name(exp, profile))
     file = paths.REFERENCE / file_name(exp, profile)
@@ -57,7 +62,7 @@ def status(exp, profile, manifest=None):
     return "ok"
 
 
-def lookup(exp, profile):
+def lookup(exp: Experiment, profile: Profile) -> tuple[dict[str, Any], Path]:
     """The manifest entry of a current reference; refuses a missing or stale one."""
     manifest = load_manifest()
     state = status(exp, profile, manifest)
@@ -68,7 +73,7 @@ def lookup(exp, profile):
     return entry, paths.REFERENCE / entry["file"]
 
 
-def render_reference(exp, profile):
+def render_reference(exp: Experiment, profile: Profile) -> None:
     """Renders the two halves with all cores, merges them, records the manifest entry."""
     out = paths.REFERENCE / file_name(exp, profile)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -108,7 +113,7 @@ def render_reference(exp, profile):
           flush=True)
 
 
-def ensure(experiments, profile_name, force=False):
+def ensure(experiments: list[Experiment], profile_name: str, force: bool = False) -> None:
     """Renders every reference that is missing or stale (or all of them with force)."""
     for exp in experiments:
         profile = exp.profiles[profile_name]
@@ -116,7 +121,8 @@ def ensure(experiments, profile_name, force=False):
             render_reference(exp, profile)
 
 
-def check_noise(exp, profile, entry, smallest_rmse, record=True):
+def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any], smallest_rmse: float,
+                record: bool = True) -> float:
     """Refuses a too-noisy reference; with record, writes the ratio into the manifest."""
     if smallest_rmse <= 0:
         raise HarnessFailure(f"{exp.id}: a render matches the reference exactly (RMSE 0), so "

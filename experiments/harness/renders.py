@@ -1,16 +1,41 @@
-"""Command lines for the renderer and the metrics tool, built from an experiment."""
+"""Command lines for the renderer and the metrics tool, built from an experiment, and their
+JSON answers."""
 import json
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
-from . import jobs, paths
+from . import config, jobs, paths
+from .config import Experiment, Integrator, Profile
+from .errors import HarnessFailure, SceneRejected
 
 # Reference halves use seeds far from the experiments' (0, 1, 2, ...), so a reference is
 # independent of every image compared against it.
 REFERENCE_SEED_BASE = 1 << 30
 
 
-def scene_args(exp, profile, integrator):
+@dataclass(frozen=True)
+class SceneCheck:
+    """`renderer check --json`'s answer for a valid scene document."""
+    integrator: str
+    resolution: tuple[int, int]
+    spp: int
+    features: str
+    scene_sha256: str  # of the document after overrides: what renders record as sceneSha256
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """`metrics compare --json`: a render measured against the reference."""
+    spp: int  # samples per pixel the render reached (renderer.spp)
+    time: float  # seconds of its render loop (renderer.renderTime)
+    metrics: dict[str, float | None]  # every metric of config.METRICS; None: not computed
+
+
+def scene_args(exp: Experiment, profile: Profile, integrator: Integrator) -> list[object]:
     """`SCENE --set ... --resolution WxH` rendering `integrator` at the profile's size."""
-    args = [exp.scene]
+    args: list[object] = [exp.scene]
     for pointer, value in exp.overrides.items():
         args += ["--set", f"{pointer}={json.dumps(value)}"]
     args += ["--set", f"/integrator={json.dumps(integrator, sort_keys=True)}"]
@@ -18,29 +43,48 @@ def scene_args(exp, profile, integrator):
     return args
 
 
-def check_scene(exp, profile, integrator):
-    """Validates the scene document a render would use (exit 2 from the renderer -> error);
-    returns the document's sha256 (what renders record as renderer.sceneSha256)."""
-    out = jobs.run_command([paths.renderer_binary(), "check",
-                            *scene_args(exp, profile, integrator)])
-    return out.split("scene sha256 ")[1].split()[0]
+def check(args: Sequence[object]) -> SceneCheck:
+    """`renderer check ARGS --json` (ARGS: the scene file, then options). Raises SceneRejected
+    for a document the renderer refuses, HarnessFailure when it gives no answer (a bad option,
+    a crash)."""
+    proc = jobs.run_process([paths.renderer_binary(), "check", *args, "--json"])
+    try:
+        answer: dict[str, Any] = json.loads(proc.stdout)
+    except ValueError:
+        raise jobs.failure(proc) from None
+    if not answer["valid"]:
+        raise SceneRejected(paths.relative(args[0]), answer["error"], answer["pointer"],
+                            answer["message"])
+    return SceneCheck(answer["integrator"], tuple(answer["resolution"]), answer["spp"],
+                      answer["features"], answer["sceneSha256"])
 
 
-def render(exp, profile, integrator, out, seed, spp=None, seconds=None, threads=1):
+def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:
+    """Checks the scene document a render of `integrator` at the profile's size would use."""
+    return check(scene_args(exp, profile, integrator))
+
+
+def render(exp: Experiment, profile: Profile, integrator: Integrator, out: Path, seed: int,
+           spp: int | None = None, seconds: float | None = None, threads: int = 1) -> None:
     args = [paths.renderer_binary(), "render", *scene_args(exp, profile, integrator),
             "--seed", seed, "--threads", threads, "--no-preview", "--out", out]
     args += ["--time-limit", seconds] if seconds is not None else ["--spp", spp]
     jobs.run_command(args)
 
 
-def compare(image, reference, relmse_reject=0.0):
-    """`metrics compare --json` -> dict. relmse_reject: the fraction of pixels with the
-    largest relMSE left out of it."""
-    return json.loads(jobs.run_command([paths.metrics_binary(), "compare", image, reference,
-                                        "--json", "--relmse-reject", repr(relmse_reject)]))
+def compare(image: Path, reference: Path, relmse_reject: float = 0.0) -> Comparison:
+    """`metrics compare --json`. relmse_reject: the fraction of pixels with the largest relMSE
+    left out of it."""
+    answer = json.loads(jobs.run_command([paths.metrics_binary(), "compare", image, reference,
+                                          "--json", "--relmse-reject", repr(relmse_reject)]))
+    if "time" not in answer or "spp" not in answer:
+        raise HarnessFailure(f"{image}: no renderer.renderTime or renderer.spp metadata")
+    return Comparison(answer["spp"], answer["time"],
+                      {name: answer.get(name) for name in config.METRICS})
 
 
-def slope(points, scratch_file):
-    """`metrics slope --json` over [{"spp", "time", "error"}] -> dict."""
+def slope(points: list[dict[str, float]], scratch_file: Path) -> dict[str, Any]:
+    """`metrics slope --json` over [{"spp", "time", "error"}]: the fit's slope, slope_stderr,
+    intercept, r2 and n, vs_spp and vs_time."""
     scratch_file.write_text(json.dumps({"points": points}))
     return json.loads(jobs.run_command([paths.metrics_binary(), "slope", scratch_file, "--json"]))

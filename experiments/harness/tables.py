@@ -5,17 +5,22 @@ import io
 import json
 import math
 import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
-from . import config, paths, provenance, stats
+from . import config, paths, provenance, records, stats
+from .config import PaperNumbers
 from .errors import ConfigError
+from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget
 
 METRIC_NAMES = {"sigma_over_mu": "σ/µ", "rmse": "RMSE", "mse": "MSE", "relmse": "relMSE",
                 "tvi_err": "Err (tvi)", "p_eff": "P-Eff", "mse_eff": "1/(T·MSE)"}
 
 
-def load_results(profile_name):
+def load_results(profile_name: str) -> dict[str, list[Results]]:
     """{paper: [results document, ...]} of one profile, in figure order."""
-    by_paper = {}
+    by_paper: dict[str, list[Results]] = {}
     for file in sorted(paths.RESULTS.glob(f"*/*{paths.suffix(profile_name)}.json")):
         if file.parent.name in ("tables", "plots", "renders", "previews"):
             continue
@@ -25,140 +30,152 @@ def load_results(profile_name):
     return by_paper
 
 
-def _fixed_spp(doc, technique):
-    return doc["techniques"][technique].get("fixed_spp", False)
+def figure_of(doc: Results) -> str:
+    return doc["experiment"].split("/")[1]
 
 
-def _matched_to(doc, row):
+def _matched_to(doc: Results, row: SummaryEntry) -> str:
     """"tais at 16 spp" when the row's equal-time budget is a fixed-spp technique's measured
     render time (several joined by ", "); "" otherwise."""
-    if row["kind"] != "time":
+    if row.kind != TIME:
         return ""
-    return ", ".join(f"{m['technique']} at {m['spp']} spp" for m in doc.get("matched", [])
-                     if m["seconds"] == row["budget"])
+    return ", ".join(f"{m.technique} at {m.spp} spp" for m in records.read_matched(doc)
+                     if m.seconds == row.budget)
 
 
-def _rows(doc):
-    """The table's rows: each technique (baseline first) at the equal-sample budget of the
-    paper's number for the primary metric (else the table's), and, when the profile has one,
-    at the table's equal-time budget (fixed-spp techniques have none). With "matched" as the
-    table's seconds, the equal-time rows follow the equal-sample ones: for each fixed-spp
-    technique, the time-capable techniques (baseline first) at its matched time for the
-    table's spp, then the technique itself at that time (its own renders at that spp)."""
-    techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
-    summary = {(s["technique"], s["kind"], s["budget"]): s for s in doc["summary"]}
+def _table_spp(doc: Results) -> int:
+    """The equal-sample budget of the paper's number for the primary metric, else the
+    table's."""
     paper = _paper_entry(doc, doc["metrics"][0])
-    spp = paper["spp"] if paper else doc["table"]["spp"]
-    seconds = doc["table"]["seconds"]
-    if seconds == "matched":
-        rows = [summary[(t, "spp", spp)] for t in techniques]
-        capable = [t for t in techniques if not _fixed_spp(doc, t)]
-        for m in doc["matched"]:
-            if m["spp"] == doc["table"]["spp"]:
-                rows += [summary[(t, "time", m["seconds"])] for t in capable + [m["technique"]]]
+    return paper.spp if paper else doc["table"]["spp"]
+
+
+def _rows(doc: Results) -> list[SummaryEntry]:
+    """The table's rows: each technique (baseline first) at _table_spp, and, when the profile
+    has one, at the table's equal-time budget (fixed-spp techniques have none). With
+    "matched" as the table's seconds, the equal-time rows follow the equal-sample ones: for
+    each fixed-spp technique, the time-capable techniques (baseline first) at its matched
+    time for the table's spp, then the technique itself at that time (its own renders at that
+    spp)."""
+    techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
+    summary = records.index_by_key(records.read_summary(doc))
+    spp, seconds = _table_spp(doc), doc["table"]["seconds"]
+    if seconds == config.MATCHED:
+        rows = [summary[TechniqueBudget(t, SPP, spp)] for t in techniques]
+        capable = [t for t in techniques if not records.fixed_spp(doc, t)]
+        for m in records.read_matched(doc):
+            if m.spp == doc["table"]["spp"]:
+                rows += [summary[TechniqueBudget(t, TIME, m.seconds)]
+                         for t in capable + [m.technique]]
         return rows
     rows = []
     for t in techniques:
-        rows.append(summary[(t, "spp", spp)])
-        if seconds is not None and (t, "time", seconds) in summary:
-            rows.append(summary[(t, "time", seconds)])
+        rows.append(summary[TechniqueBudget(t, SPP, spp)])
+        if seconds is not None and TechniqueBudget(t, TIME, seconds) in summary:
+            rows.append(summary[TechniqueBudget(t, TIME, seconds)])
     return rows
 
 
-def _paper_entry(doc, metric, spp=None):
+def _paper_entry(doc: Results, metric: str, spp: float | None = None) -> PaperNumbers | None:
     """The paper's numbers for a metric (at an equal-sample budget, when given)."""
-    for p in doc["paper"]:
-        if p["metric"] == metric and (spp is None or p["spp"] == spp):
+    for p in records.read_paper(doc):
+        if p.metric == metric and (spp is None or p.spp == spp):
             return p
     return None
 
 
-def _paper_cells(doc, row, metric):
-    """(paper's value, its spp, paper's gain, verdict) for a row, where the paper reports the
-    metric at the row's equal-sample budget; Nones and '—' elsewhere."""
-    paper = _paper_entry(doc, metric, row["budget"]) if row["kind"] == "spp" else None
+@dataclass(frozen=True)
+class PaperCells:
+    """What the paper says about a row: its value, at its spp, its gain, and our verdict."""
+    value: float | None = None
+    spp: int | None = None
+    gain: float | None = None
+    verdict: str = "—"
+
+
+def _paper_cells(doc: Results, row: SummaryEntry, metric: str) -> PaperCells:
+    """The paper's cells for a row, where the paper reports the metric at the row's
+    equal-sample budget; empty elsewhere."""
+    paper = _paper_entry(doc, metric, row.budget) if row.kind == SPP else None
     if paper is None:
-        return None, None, None, "—"
-    higher = config.METRICS[metric]
-    value = paper["values"].get(row["technique"])
-    if row["technique"] == doc["baseline"]:
-        return value, paper["spp"], None, "—"
-    paper_gain = stats.paper_gain(paper["values"], doc["baseline"], row["technique"], higher)
-    ours = _gain_estimate(row["gain"].get(metric))
-    return value, paper["spp"], paper_gain, stats.verdict(ours, paper_gain)
+        return PaperCells()
+    value = paper.values.get(row.technique)
+    if row.technique == doc["baseline"]:
+        return PaperCells(value, paper.spp)
+    paper_gain = stats.paper_gain(paper.values, doc["baseline"], row.technique,
+                                  config.METRICS[metric])
+    return PaperCells(value, paper.spp, paper_gain,
+                      stats.verdict(row.gain.get(metric), paper_gain))
 
 
-def _gain_estimate(g):
-    return stats.Gain(g["value"], g["stderr"], tuple(g["ci95"])) if g else None
+@dataclass(frozen=True)
+class RowValues:
+    """The cells of one row of a Markdown or LaTeX table."""
+    figure: str
+    technique: str
+    budget: str  # "16 spp", "0.5 s", "0.012 s (time of tais at 16 spp)"
+    spp: float
+    time: float
+    metric: str
+    mean: float | None
+    half_width: float | None  # of the 95 % interval
+    gain: stats.Gain | None
+    paper: PaperCells
 
 
-def _row_values(doc, row, metric=None):
+def _row_values(doc: Results, row: SummaryEntry, metric: str | None = None) -> RowValues:
     metric = metric or doc["metrics"][0]
-    m = row["metrics"][metric]
-    paper_value, paper_spp, paper_gain, verdict = _paper_cells(doc, row, metric)
-    gain = _gain_estimate(row["gain"].get(metric))
-    budget = f"{row['budget']:g} {'spp' if row['kind'] == 'spp' else 's'}"
+    m = row.metrics[metric]
+    budget = f"{row.budget:g} {'spp' if row.kind == SPP else 's'}"
     if _matched_to(doc, row):
         budget += f" (time of {_matched_to(doc, row)})"
-    return {
-        "figure": doc["experiment"].split("/")[1],
-        "technique": row["technique"],
-        "budget": budget,
-        "spp": row["spp"]["mean"],
-        "time": row["time"]["mean"],
-        "metric": metric,
-        "mean": m["mean"] if m else None,
-        "half_width": (m["ci95"][1] - m["mean"]) if m else None,
-        "paper_value": paper_value,
-        "paper_spp": paper_spp,
-        "gain": gain,
-        "paper_gain": paper_gain,
-        "verdict": verdict,
-    }
+    return RowValues(figure_of(doc), row.technique, budget, row.spp.mean, row.time.mean, metric,
+                     m.mean if m else None, (m.ci95[1] - m.mean) if m else None,
+                     row.gain.get(metric), _paper_cells(doc, row, metric))
 
 
-def _fmt(x, digits=4):
+def _fmt(x: float | None, digits: int = 4) -> str:
     return "—" if x is None else f"{x:.{digits}g}"
 
 
-def _gain_text(g):
+def _gain_text(g: stats.Gain | None) -> str:
     return "—" if g is None else f"×{g.value:.3g} [{g.ci95[0]:.3g}, {g.ci95[1]:.3g}]"
 
 
-def _comparison_cells(v):
-    """The cells shared by both Markdown tables, from `_row_values`."""
-    paper = "—" if v["paper_value"] is None else f"{v['paper_value']:.4g} ({v['paper_spp']} spp)"
-    paper_gain = "—" if v["paper_gain"] is None else f"×{v['paper_gain']:.3g}"
-    ours = "—" if v["mean"] is None else f"{_fmt(v['mean'])} ± {_fmt(v['half_width'], 2)}"
-    return f"{ours} | {paper} | {_gain_text(v['gain'])} | {paper_gain} | {v['verdict']} |"
+def _comparison_cells(v: RowValues) -> str:
+    """The cells shared by both Markdown tables."""
+    p = v.paper
+    paper = "—" if p.value is None else f"{p.value:.4g} ({p.spp} spp)"
+    paper_gain = "—" if p.gain is None else f"×{p.gain:.3g}"
+    ours = "—" if v.mean is None else f"{_fmt(v.mean)} ± {_fmt(v.half_width, 2)}"
+    return f"{ours} | {paper} | {_gain_text(v.gain)} | {paper_gain} | {p.verdict} |"
 
 
-def _main_table(docs):
+def _main_table(docs: list[Results]) -> list[str]:
     head = ("| figure | technique | budget | spp | time (s) | metric | ours (mean ± 95 %) | paper "
             "| gain over baseline (95 %) | paper's gain | verdict |")
     lines = [head, "|" + "---|" * 11]
     for doc in docs:
         for row in _rows(doc):
             v = _row_values(doc, row)
-            lines.append(f"| {v['figure']} | {v['technique']} | {v['budget']} | {v['spp']:.4g} | "
-                         f"{v['time']:.3g} | {METRIC_NAMES[v['metric']]} | "
-                         + _comparison_cells(v))
+            lines.append(f"| {v.figure} | {v.technique} | {v.budget} | {v.spp:.4g} | "
+                         f"{v.time:.3g} | {METRIC_NAMES[v.metric]} | " + _comparison_cells(v))
     return lines
 
 
-def _secondary_table(docs):
+def _secondary_table(docs: list[Results]) -> list[str]:
     lines = ["| figure | technique | budget | metric | ours (mean ± 95 %) | paper | gain over "
              "baseline (95 %) | paper's gain | verdict |", "|" + "---|" * 9]
     for doc in docs:
         for row in _rows(doc):
             for metric in doc["metrics"][1:]:
                 v = _row_values(doc, row, metric)
-                lines.append(f"| {v['figure']} | {v['technique']} | {v['budget']} | "
+                lines.append(f"| {v.figure} | {v.technique} | {v.budget} | "
                              f"{METRIC_NAMES[metric]} | " + _comparison_cells(v))
     return lines
 
 
-def _slope_table(docs):
+def _slope_table(docs: list[Results]) -> list[str]:
     lines = ["| figure | technique | metric | slope vs spp (± s.e.) | R² | slope vs time (± s.e.) "
              "| R² | points |", "|---|---|---|---|---|---|---|---|"]
     for doc in docs:
@@ -166,14 +183,13 @@ def _slope_table(docs):
             a, b = s["vs_spp"], s.get("vs_time")
             time_cells = (f"{b['slope']:.3f} ± {b['slope_stderr']:.3f} | {b['r2']:.3f}" if b
                           else "— | —")
-            lines.append(f"| {doc['experiment'].split('/')[1]} | {technique} | "
-                         f"{METRIC_NAMES[doc['metrics'][0]]} | "
+            lines.append(f"| {figure_of(doc)} | {technique} | {METRIC_NAMES[doc['metrics'][0]]} | "
                          f"{a['slope']:.3f} ± {a['slope_stderr']:.3f} | {a['r2']:.3f} | "
                          f"{time_cells} | {a['n']} |")
     return lines
 
 
-def _equivalent_baseline_spp(doc, error):
+def _equivalent_baseline_spp(doc: Results, error: float | None) -> float | None:
     """Samples per pixel at which the baseline's fitted convergence line (log error against log
     spp, over all its runs) reaches `error`; None without a fit."""
     fit = doc["slopes"].get(doc["baseline"], {}).get("vs_spp")
@@ -182,46 +198,43 @@ def _equivalent_baseline_spp(doc, error):
     return math.exp((math.log(error) - fit["intercept"]) / fit["slope"])
 
 
-def _cost_table(docs):
+def _cost_table(docs: list[Results]) -> list[str]:
     """Per technique at the table's equal-sample budget: render time per sample relative to the
     baseline's (same spp, same seeds), the equal-sample gain next to the equal-time one, and
     how many samples the baseline needs for the technique's error (from its fitted line)."""
     lines = ["| figure | technique | spp | time per sample / baseline's | gain, equal samples | "
              "gain, equal time | baseline spp for this error (× this spp) |",
              "|---|---|---|---|---|---|---|"]
-    metric = None
     for doc in docs:
-        metric = doc["metrics"][0]
-        summary = {(s["technique"], s["kind"], s["budget"]): s for s in doc["summary"]}
-        paper = _paper_entry(doc, metric)
-        spp = paper["spp"] if paper else doc["table"]["spp"]
-        base = summary.get((doc["baseline"], "spp", spp))
+        metric, spp = doc["metrics"][0], _table_spp(doc)
+        entries = records.read_summary(doc)
+        summary = records.index_by_key(entries)
+        base = summary.get(TechniqueBudget(doc["baseline"], SPP, spp))
         if base is None:
             continue
         for t in doc["techniques"]:
-            row = summary.get((t, "spp", spp))
+            row = summary.get(TechniqueBudget(t, SPP, spp))
             if t == doc["baseline"] or row is None:
                 continue
-            cost = row["time"]["mean"] / base["time"]["mean"]
-            timed = [s for s in doc["summary"] if s["technique"] == t and s["kind"] == "time"
-                     and s.get("duplicate_of", {}).get("budget") == spp]
-            equal_time = _gain_estimate(timed[0]["gain"].get(metric)) if timed else None
-            error = row["metrics"][metric]["mean"] if row["metrics"][metric] else None
+            cost = row.time.mean / base.time.mean
+            timed = [s for s in entries if s.technique == t and s.kind == TIME
+                     and s.duplicate_of is not None and s.duplicate_of.budget == spp]
+            equal_time = timed[0].gain.get(metric) if timed else None
+            error = row.metrics[metric].mean if row.metrics[metric] else None
             n = _equivalent_baseline_spp(doc, error)
-            lines.append(f"| {doc['experiment'].split('/')[1]} | {t} | {spp} | ×{cost:.3g} | "
-                         f"{_gain_text(_gain_estimate(row['gain'].get(metric)))} | "
-                         f"{_gain_text(equal_time)} | "
+            lines.append(f"| {figure_of(doc)} | {t} | {spp} | ×{cost:.3g} | "
+                         f"{_gain_text(row.gain.get(metric))} | {_gain_text(equal_time)} | "
                          f"{'—' if n is None else f'{n:.4g} (×{n / spp:.3g})'} |")
     return lines
 
 
-def _analysis(paper):
+def _analysis(paper: str) -> list[str]:
     """The hand-written analysis of a paper's results, `results/<paper>/analysis.md`, if any."""
     file = paths.RESULTS / paper / "analysis.md"
     return file.read_text().rstrip("\n").split("\n") if file.exists() else []
 
 
-def config_changed(doc):
+def config_changed(doc: Results) -> bool:
     """True when the experiment's config (thresholds aside) differs from the one that made
     these results, or is gone."""
     try:
@@ -231,18 +244,18 @@ def config_changed(doc):
         return True
 
 
-def _experiment_notes(docs):
+def _experiment_notes(docs: list[Results]) -> list[str]:
     lines = []
     for doc in docs:
         if config_changed(doc):
-            lines.append(f"- **{doc['experiment'].split('/')[1]}: its config has changed since "
-                         "this run; run it again.**")
+            lines.append(f"- **{figure_of(doc)}: its config has changed since this run; run it "
+                         "again.**")
         ref = doc["reference"]
         prov = doc["provenance"]
-        matched = "".join(f" Equal time matched to {m['technique']} at {m['spp']} spp: "
-                          f"{m['seconds']:g} s." for m in doc.get("matched", []))
+        matched = "".join(f" Equal time matched to {m.technique} at {m.spp} spp: "
+                          f"{m.seconds:g} s." for m in records.read_matched(doc))
         lines.append(
-            f"- **{doc['experiment'].split('/')[1]}** ({doc['profile']} profile, "
+            f"- **{figure_of(doc)}** ({doc['profile']} profile, "
             f"{doc['resolution'][0]}×{doc['resolution'][1]}, {len(doc['seeds'])} seeds, "
             f"{prov['parallel_jobs']} parallel renders × {prov['threads_per_job']} thread, "
             f"commit `{(prov['git_commit'] or 'unknown')[:10]}`"
@@ -253,25 +266,31 @@ def _experiment_notes(docs):
     return lines
 
 
-def markdown(paper, docs):
-    lines = [f"# {paper}: results", "",
-             "Generated by `make tables` from `results/" + paper + "/*.json`; do not edit. Errors "
-             "are means over seeds with Student-t 95 % intervals; a gain is how many times "
-             "better than the baseline (error ratio, or efficiency ratio for P-Eff) with a "
-             "delta-method 95 % interval. Verdict: *reproduced* when our gain is within ×"
-             f"{stats.REPRODUCED_FACTOR} of the paper's or the paper's lies in our interval, "
-             "else *weaker* / *stronger*; — where the paper reports no number."
-             + (" A budget of \"T s (time of X at N spp)\" is X's mean render time at N spp: "
-                "X renders a fixed number of samples, so the other techniques are given its "
-                "time, and X's row there is its N-spp renders."
-                if any(doc.get("matched") for doc in docs) else ""), ""]
+def _legend(paper: str, docs: list[Results]) -> str:
+    """What the tables' numbers and verdicts (stats.verdict) mean."""
+    matched = (" A budget of \"T s (time of X at N spp)\" is X's mean render time at N spp: X "
+               "renders a fixed number of samples, so the other techniques are given its time, "
+               "and X's row there is its N-spp renders."
+               if any(records.read_matched(doc) for doc in docs) else "")
+    return (
+        f"Generated by `make tables` from `results/{paper}/*.json`; do not edit. Errors are "
+        "means over seeds with Student-t 95 % intervals; a gain is how many times better than "
+        "the baseline (error ratio, or efficiency ratio for P-Eff) with a delta-method 95 % "
+        f"interval. Verdict: *reproduced* when our gain is within ×{stats.REPRODUCED_FACTOR} of "
+        "the paper's; *weaker* / *stronger* when our whole 95 % interval lies below / above "
+        "that band; *inconclusive* when our gain is outside the band but its interval reaches "
+        "into it; — where the paper reports no number." + matched)
+
+
+def markdown(paper: str, docs: list[Results]) -> str:
+    lines = [f"# {paper}: results", "", _legend(paper, docs), ""]
     lines += _main_table(docs)
     lines += ["", "## Other metrics", ""] + _secondary_table(docs)
     lines += ["", "## Convergence", "",
               "Least-squares slope of log error against log samples and log render time over "
               "every run (all seeds and budgets), from `metrics slope`; plain Monte Carlo "
               "converges as −0.5.", ""] + _slope_table(docs)
-    if any(doc.get("matched") for doc in docs):
+    if any(records.read_matched(doc) for doc in docs):
         lines += ["", "## Cost and equivalent samples", "",
                   "At each experiment's table budget. The baseline spp for the technique's error "
                   "comes from the baseline's fitted line of log error against log spp (see "
@@ -287,7 +306,18 @@ def markdown(paper, docs):
     return "\n".join(lines) + "\n"
 
 
-def csv_text(docs):
+def _metric_cells(m: stats.MetricSummary | None) -> list[Any]:
+    """mean, ci95_lo, ci95_hi, sd (an efficiency has none), seeds."""
+    if m is None:
+        return [""] * 5
+    return [m.mean, *m.ci95, m.sd if isinstance(m, stats.Estimate) else "", m.n]
+
+
+def _gain_cells(g: stats.Gain | None) -> list[Any]:
+    return [""] * 3 if g is None else [g.value, *g.ci95]
+
+
+def csv_text(docs: list[Results]) -> str:
     out = io.StringIO()
     w = csv.writer(out)
     w.writerow(["experiment", "profile", "technique", "budget_kind", "budget", "metric", "mean",
@@ -295,27 +325,24 @@ def csv_text(docs):
                 "gain_ci95_lo", "gain_ci95_hi", "paper_value", "paper_gain", "verdict",
                 "matched_to"])
     for doc in docs:
-        for s in doc["summary"]:
+        for s in records.read_summary(doc):
             for metric in doc["metrics"]:
-                m, g = s["metrics"][metric], s["gain"].get(metric)
-                paper_value, _, paper_gain, verdict = _paper_cells(doc, s, metric)
-                w.writerow([doc["experiment"], doc["profile"], s["technique"], s["kind"],
-                            s["budget"], metric,
-                            *(m and [m["mean"], *m["ci95"], m.get("sd", ""), m["n"]] or [""] * 5),
-                            s["spp"]["mean"], s["time"]["mean"],
-                            *(g and [g["value"], *g["ci95"]] or [""] * 3),
-                            "" if paper_value is None else paper_value,
-                            "" if paper_gain is None else paper_gain,
-                            "" if verdict == "—" else verdict, _matched_to(doc, s)])
+                paper = _paper_cells(doc, s, metric)
+                w.writerow([doc["experiment"], doc["profile"], s.technique, s.kind, s.budget,
+                            metric, *_metric_cells(s.metrics[metric]), s.spp.mean, s.time.mean,
+                            *_gain_cells(s.gain.get(metric)),
+                            "" if paper.value is None else paper.value,
+                            "" if paper.gain is None else paper.gain,
+                            "" if paper.verdict == "—" else paper.verdict, _matched_to(doc, s)])
     return out.getvalue()
 
 
-def _tex_escape(text):
+def _tex_escape(text: str) -> str:
     return (text.replace("\\", r"\textbackslash{}").replace("_", r"\_").replace("%", r"\%")
             .replace("&", r"\&").replace("#", r"\#"))
 
 
-def latex(paper, docs):
+def latex(paper: str, docs: list[Results]) -> str:
     lines = [r"% Generated by make tables; needs \usepackage{booktabs}.",
              r"\begin{tabular}{llllrrlll}", r"\toprule",
              r"figure & technique & budget & metric & ours & $\pm$95\,\% & paper & gain & "
@@ -323,18 +350,17 @@ def latex(paper, docs):
     for doc in docs:
         for row in _rows(doc):
             v = _row_values(doc, row)
-            cells = [v["figure"], v["technique"], v["budget"],
-                     {"sigma_over_mu": r"$\sigma/\mu$"}.get(v["metric"], v["metric"]),
-                     _fmt(v["mean"]), _fmt(v["half_width"], 2), _fmt(v["paper_value"]),
-                     "--" if v["gain"] is None else f"{v['gain'].value:.3g}",
-                     _fmt(v["paper_gain"], 3)]
+            cells = [v.figure, v.technique, v.budget,
+                     {"sigma_over_mu": r"$\sigma/\mu$"}.get(v.metric, v.metric),
+                     _fmt(v.mean), _fmt(v.half_width, 2), _fmt(v.paper.value),
+                     "--" if v.gain is None else f"{v.gain.value:.3g}", _fmt(v.paper.gain, 3)]
             lines.append(" & ".join(_tex_escape(str(c)) if not c.startswith("$") else c
                                     for c in cells) + r" \\")
     lines += [r"\bottomrule", r"\end{tabular}"]
     return "\n".join(lines).replace("—", "--") + "\n"
 
 
-def write_all(profile_name):
+def write_all(profile_name: str) -> list[Path]:
     written = []
     for paper, docs in load_results(profile_name).items():
         for doc in docs:
@@ -347,4 +373,3 @@ def write_all(profile_name):
             provenance.write_text_atomically(out, text)
             written.append(out)
     return written
-

@@ -4,71 +4,98 @@ below its stored floor. `calibrate` proposes thresholds from a results file."""
 import json
 import math
 import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
-from . import experiment, references
+from . import experiment, records, references
+from .config import Experiment, ThresholdCheck, Thresholds
 from .errors import HarnessFailure
+from .records import SPP, SummaryEntry, TechniqueBudget
+from .stats import Estimate, Gain
 
 SIGMAS = 4  # thresholds sit this many standard deviations (or errors) from the measurement
 MIN_MARGIN = 0.02
+MAX_ERROR, MIN_GAIN = "max_error", "min_gain"
 
 
-def evaluate(exp, summary):
+@dataclass(frozen=True)
+class Verdict:
+    """One stored limit against its measurement."""
+    technique: str
+    spp: int
+    limit: str  # MAX_ERROR or MIN_GAIN
+    threshold: float
+    measured: float | None  # None: undefined (a missing metric, a zero error)
+    passed: bool
+
+
+def evaluate(exp: Experiment, summary: list[SummaryEntry]) -> list[Verdict]:
     """One verdict per stored limit, against a summary (see experiment.summarise)."""
     metric = exp.primary_metric
-    by_budget = {(s["technique"], s["budget"]): s for s in summary if s["kind"] == "spp"}
+    by_key = records.index_by_key(summary)
     verdicts = []
     for c in exp.thresholds.checks:
-        s = by_budget[(c.technique, c.spp)]
+        s = by_key[TechniqueBudget(c.technique, SPP, c.spp)]
         if c.max_error is not None:
-            measured = (s["metrics"].get(metric) or {}).get("mean")
-            verdicts.append({"technique": c.technique, "spp": c.spp, "limit": "max_error",
-                             "threshold": c.max_error, "measured": measured,
-                             "passed": measured is not None and measured <= c.max_error})
+            error = s.metrics.get(metric)
+            measured = None if error is None else error.mean
+            verdicts.append(Verdict(c.technique, c.spp, MAX_ERROR, c.max_error, measured,
+                                    measured is not None and measured <= c.max_error))
         if c.min_gain is not None:
             # No gain (a zero error) fails too: the check cannot vouch for it.
-            measured = (s["gain"].get(metric) or {}).get("value")
-            verdicts.append({"technique": c.technique, "spp": c.spp, "limit": "min_gain",
-                             "threshold": c.min_gain, "measured": measured,
-                             "passed": measured is not None and measured >= c.min_gain})
+            gain = s.gain.get(metric)
+            measured = None if gain is None else gain.value
+            verdicts.append(Verdict(c.technique, c.spp, MIN_GAIN, c.min_gain, measured,
+                                    measured is not None and measured >= c.min_gain))
     return verdicts
 
 
-def run_check(exp, workers):
+def run_check(exp: Experiment, workers: int) -> list[Verdict]:
     """Renders what the thresholds need (their techniques and the baseline at their spp,
     every seed) into a scratch directory; returns the verdicts. Writes nothing else."""
     profile = exp.profiles[exp.thresholds.profile]
     needed = set()
     for c in exp.thresholds.checks:
-        needed.add((c.technique, "spp", c.spp))
+        needed.add(TechniqueBudget(c.technique, SPP, c.spp))
         if c.min_gain is not None:
-            needed.add((exp.baseline, "spp", c.spp))
+            needed.add(TechniqueBudget(exp.baseline, SPP, c.spp))
     entry, reference_file = references.lookup(exp, profile)
     with tempfile.TemporaryDirectory() as scratch:
         runs = experiment.expand(exp, profile, only=needed)
-        records = experiment.execute(exp, profile, runs, Path(scratch), reference_file, workers)
-    references.check_noise(exp, profile, entry, experiment.smallest_rmse(records), record=False)
-    return evaluate(exp, experiment.summarise(exp, records))
+        rendered = experiment.execute(exp, profile, runs, Path(scratch), reference_file, workers)
+    references.check_noise(exp, profile, entry, experiment.smallest_rmse(rendered), record=False)
+    return evaluate(exp, experiment.summarise(exp, rendered))
 
 
-def format_verdicts(exp, verdicts):
+def format_verdicts(exp: Experiment, verdicts: list[Verdict]) -> str:
     lines = []
     for v in verdicts:
-        relation = "<=" if v["limit"] == "max_error" else ">="
-        what = exp.primary_metric if v["limit"] == "max_error" else f"gain in {exp.primary_metric}"
-        measured = "undefined" if v["measured"] is None else f"{v['measured']:.4g}"
-        lines.append(f"  {'PASS' if v['passed'] else 'FAIL'} {v['technique']} at {v['spp']} spp: "
-                     f"{what} {measured} (must be {relation} {v['threshold']:.4g})")
+        relation = "<=" if v.limit == MAX_ERROR else ">="
+        what = exp.primary_metric if v.limit == MAX_ERROR else f"gain in {exp.primary_metric}"
+        measured = "undefined" if v.measured is None else f"{v.measured:.4g}"
+        lines.append(f"  {'PASS' if v.passed else 'FAIL'} {v.technique} at {v.spp} spp: "
+                     f"{what} {measured} (must be {relation} {v.threshold:.4g})")
     return "\n".join(lines)
 
 
-def _round(x, direction, digits=3):
+def _round(x: float, direction: Callable[[float], int], digits: int = 3) -> float:
     """x to `digits` significant digits, rounded with `direction` (math.ceil or math.floor)."""
     scale = 10 ** (digits - 1 - math.floor(math.log10(x)))
     return direction(x * scale) / scale
 
 
-def calibrate(exp, results, spps):
+def _max_error(e: Estimate) -> float:
+    return _round(max(e.mean + SIGMAS * e.sd, e.mean * (1 + MIN_MARGIN)), math.ceil)
+
+
+def _min_gain(g: Gain) -> float:
+    log_se = g.stderr / g.value
+    return _round(min(g.value * math.exp(-SIGMAS * log_se), g.value / (1 + MIN_MARGIN)),
+                  math.floor)
+
+
+def calibrate(exp: Experiment, results: records.Results, spps: list[int]) -> Thresholds:
     """A thresholds block from measured results: max_error = mean + 4 sd over seeds (rounded
     up), min_gain = gain · exp(-4 s.e. of log gain) (paired; rounded down). Either sits at
     least MIN_MARGIN from the measurement: CI machines may pick other Embree kernels, which
@@ -79,29 +106,24 @@ def calibrate(exp, results, spps):
                              "config; run the experiment again first")
     metric = exp.primary_metric
     checks = []
-    for s in results["summary"]:
-        e = s["metrics"][metric]
-        if s["kind"] != "spp" or s["budget"] not in spps or not e or e["mean"] <= 0:
+    for s in records.read_summary(results):
+        e, g = s.metrics[metric], s.gain.get(metric)
+        if s.kind != SPP or s.budget not in spps or not e or e.mean <= 0:
             continue
-        check = {"technique": s["technique"], "spp": int(s["budget"]),
-                 "max_error": _round(max(e["mean"] + SIGMAS * e["sd"],
-                                       e["mean"] * (1 + MIN_MARGIN)), math.ceil)}
-        g = s["gain"].get(metric)
-        if g:
-            log_se = g["stderr"] / g["value"]
-            floor = min(g["value"] * math.exp(-SIGMAS * log_se), g["value"] / (1 + MIN_MARGIN))
-            check["min_gain"] = _round(floor, math.floor)
-        checks.append(check)
+        checks.append(ThresholdCheck(s.technique, int(s.budget), _max_error(e),
+                                     None if g is None else _min_gain(g)))
     order = list(exp.techniques)
-    checks.sort(key=lambda c: (order.index(c["technique"]), c["spp"]))
+    checks.sort(key=lambda c: (order.index(c.technique), c.spp))
     method = (f"max_error = mean + {SIGMAS} sd of {metric} over the {len(results['seeds'])} "
               f"seeds; min_gain = gain x exp(-{SIGMAS} s.e. of the paired log gain); each at "
               f"least {MIN_MARGIN:.0%} from the measurement; set by `experiments/run.py "
               f"calibrate` from the {results['profile']} profile at commit "
               f"{(results['provenance']['git_commit'] or 'unknown')[:10]}, "
               f"{results['provenance']['started'][:10]}")
-    return {"profile": results["profile"], "method": method, "checks": checks}
+    return Thresholds(results["profile"], method, checks)
 
 
-def format_block(block):
-    return json.dumps({"thresholds": block}, indent=2, ensure_ascii=False)
+def format_block(block: Thresholds) -> str:
+    """The block as the config's "thresholds" key, without the limits a check lacks."""
+    value = {**records.to_json(block), "checks": [records.to_json(c) for c in block.checks]}
+    return json.dumps({"thresholds": value}, indent=2, ensure_ascii=False)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "experiments"))
 
-from harness import config  # noqa: E402
+from harness import config, records, stats  # noqa: E402
 
 VALID = {
     "description": "test experiment",
@@ -50,10 +50,10 @@ def load_config(document, figure="figure"):
 
 
 def summary_entry(technique, kind, budget, metric_values, gain=None):
-    from harness import stats
-    e = stats.estimate(metric_values)
-    return {"technique": technique, "kind": kind, "budget": budget,
-            "spp": stats.estimate([budget] * 2).to_json(),
-            "time": stats.estimate([1.0, 1.0]).to_json(),
-            "metrics": {"sigma_over_mu": e.to_json(), "p_eff": None},
-            "gain": {"sigma_over_mu": gain} if gain else {}}
+    """A summary entry with σ/µ over seeds `metric_values` and `gain` (a stats.Gain) over the
+    baseline in it."""
+    return records.SummaryEntry(
+        technique, kind, budget, spp=stats.estimate([budget] * 2),
+        time=stats.estimate([1.0, 1.0]),
+        metrics={"sigma_over_mu": stats.estimate(metric_values), "p_eff": None},
+        gain={"sigma_over_mu": gain} if gain else {})

@@ -1,7 +1,12 @@
-"""Experiment configs: a valid one loads; every kind of bad input names its JSON pointer."""
+"""Experiment configs: a valid one loads; every kind of bad input names its JSON pointer;
+the schema is a valid schema that every committed config satisfies."""
+import json
 import unittest
 
+import jsonschema
+
 from fixtures import load_config, valid
+from harness import config, paths
 from harness.errors import ConfigError
 
 
@@ -79,8 +84,8 @@ class BadConfigTest(unittest.TestCase):
             (lambda d: d["profiles"]["quick"].update(seeds=4), "/profiles/quick/seeds", ">= 5"),
             (lambda d: d["profiles"]["quick"].update(spp=[16, 4]), "/profiles/quick/spp",
              "increasing"),
-            (lambda d: d["profiles"]["quick"].update(seconds=[-1]), "/profiles/quick/seconds",
-             "positive"),
+            (lambda d: d["profiles"]["quick"].update(seconds=[-1]),
+             "/profiles/quick/seconds/0", "positive"),
             (lambda d: d["profiles"]["quick"].update(reference_spp=63),
              "/profiles/quick/reference_spp", "even"),
             (lambda d: d["profiles"]["quick"]["table"].update(spp=8),
@@ -91,9 +96,9 @@ class BadConfigTest(unittest.TestCase):
             (lambda d: d.update(metrics=["sigma_over_mu", "psnr"]), "/metrics/1",
              "unknown metric"),
             (lambda d: d.update(scene="configs/scenes/missing.json"), "/scene", "not found"),
-            (lambda d: d.update(set={"render/spp": 1}), "/set", "JSON pointers"),
-            (lambda d: d["techniques"]["base"].update(integrator={}), "/techniques/base/integrator",
-             "type"),
+            (lambda d: d.update(set={"render/spp": 1}), "/set/render~1spp", "JSON pointers"),
+            (lambda d: d["techniques"]["base"].update(integrator={}),
+             "/techniques/base/integrator/type", "missing"),
             (lambda d: d["paper"]["values"].update(ghost=1.0), "/paper/values/ghost",
              "not one of the techniques"),
             (lambda d: d["thresholds"]["checks"][0].update(spp=8), "/thresholds/checks/0/spp",
@@ -104,8 +109,10 @@ class BadConfigTest(unittest.TestCase):
             (lambda d: d["profiles"]["quick"].update(seeds=None), "/profiles/quick/seeds",
              ">= 5"),
             (lambda d: d["paper"]["values"].update(base=None), "/paper/values/base", "positive"),
-            (lambda d: d.update(set={"/render/spp": 4}), "/set", "set by the harness"),
-            (lambda d: d.update(set={"/integrator/type": "path"}), "/set", "set by the harness"),
+            (lambda d: d.update(set={"/render/spp": 4}), "/set/~1render~1spp",
+             "set by the harness"),
+            (lambda d: d.update(set={"/integrator/type": "path"}), "/set/~1integrator~1type",
+             "set by the harness"),
             (lambda d: d["techniques"].update({"bad name": {"integrator": {"type": "path"}}}),
              "/techniques/bad name", "letters, digits"),
             (lambda d: d["paper"].update(metric="rmse"), "/paper/metric",
@@ -152,9 +159,9 @@ class MatchedConfigTest(unittest.TestCase):
             (lambda d: d["profiles"]["quick"].update(matched_spp=[16, 4]),
              f"{quick}/matched_spp", "increasing"),
             (lambda d: d["profiles"]["quick"].update(matched_spp=["16"]),
-             f"{quick}/matched_spp", "list"),
+             f"{quick}/matched_spp/0", "integer"),
             (lambda d: d["profiles"]["quick"].update(matched_spp=[True]),
-             f"{quick}/matched_spp", "list"),
+             f"{quick}/matched_spp/0", "integer"),
             (lambda d: d["profiles"]["quick"].update(matched_spp=None), f"{quick}/matched_spp",
              "list"),
             (lambda d: d["profiles"]["quick"]["table"].update(seconds="matched"),
@@ -169,6 +176,77 @@ class MatchedConfigTest(unittest.TestCase):
         for change, pointer, fragment in cases:
             with self.subTest(pointer=pointer, fragment=fragment):
                 self.assertRejects(self.mutated(change), pointer, fragment)
+
+
+class SchemaTest(unittest.TestCase):
+    """configs/schema/experiment.schema.json on its own, as an editor uses it."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.schema = json.loads(config.SCHEMA_FILE.read_text(encoding="utf-8"))
+
+    def test_is_a_valid_draft_2020_12_schema(self):
+        self.assertEqual(self.schema["$schema"], "https://json-schema.org/draft/2020-12/schema")
+        jsonschema.Draft202012Validator.check_schema(self.schema)
+
+    def test_every_committed_experiment_config_validates_and_loads(self):
+        validator = jsonschema.Draft202012Validator(self.schema)
+        files = paths.all_experiment_configs()
+        self.assertTrue(files)
+        for file in files:
+            with self.subTest(config=paths.relative(file)):
+                validator.validate(json.loads(file.read_text(encoding="utf-8")))
+                config.load(file)
+
+    def test_names_agree_with_the_code(self):
+        self.assertEqual(self.schema["$defs"]["metric"]["enum"], list(config.METRICS))
+        self.assertEqual(self.schema["$defs"]["thresholds"]["properties"]["profile"]["enum"],
+                         list(config.PROFILES))
+        self.assertEqual(self.schema["properties"]["profiles"]["required"], list(config.PROFILES))
+
+
+class SchemaErrorTest(unittest.TestCase):
+    """Errors the schema finds: one line, the best match, naming the pointer."""
+    assertRejects = BadConfigTest.assertRejects
+    mutated = BadConfigTest.mutated
+
+    def test_structural_errors(self):
+        cases = [
+            (lambda d: d["thresholds"]["checks"][0].update(max_error=None),
+             "/thresholds/checks/0/max_error", "positive finite number, got null"),
+            (lambda d: [d["thresholds"]["checks"][0].pop(k) for k in ("max_error", "min_gain")],
+             "/thresholds/checks/0", "give max_error, min_gain or both"),
+            (lambda d: d["thresholds"].update(profile="fast"), "/thresholds/profile",
+             "unknown profile (known: quick, full), got \"fast\""),
+            (lambda d: d["profiles"]["quick"].update(spp=[4, 16.0]), "/profiles/quick/spp/1",
+             "integer"),
+            (lambda d: d["profiles"]["quick"].update(crop=[0, 0, 0, 8]), "/profiles/quick/crop/2",
+             "integer >= 1"),
+            (lambda d: d["profiles"]["quick"].update(crop=[0, 0, 8]), "/profiles/quick/crop",
+             "[x, y, width, height]"),
+            (lambda d: d["profiles"]["quick"]["table"].update(seconds=-1),
+             "/profiles/quick/table/seconds", "seconds budgets or \"matched\", got -1"),
+            (lambda d: d.update(paper=[d["paper"], {"source": "x"}]), "/paper/1/metric",
+             "missing"),
+            (lambda d: d.update(paper=5), "/paper", "an object, or a non-empty list"),
+            (lambda d: d.update(metrics=["rmse", "rmse"]), "/metrics", "each once"),
+            (lambda d: d.update(techniques={}), "/techniques", "at least one technique"),
+            (lambda d: d["techniques"]["base"].update(label=""), "/techniques/base/label",
+             "non-empty string, got \"\""),
+        ]
+        for change, pointer, fragment in cases:
+            with self.subTest(pointer=pointer, fragment=fragment):
+                self.assertRejects(self.mutated(change), pointer, fragment)
+
+    def test_the_shallowest_of_several_errors_is_reported(self):
+        doc = self.mutated(lambda d: d["profiles"]["quick"].update(seeds=4, sppp=1))
+        doc["extra"] = 1
+        for _ in range(3):
+            self.assertRejects(doc, "/extra", "unknown key")
+
+    def test_a_number_too_large_for_a_double_is_not_json(self):
+        text = json.dumps(valid()).replace('"max_error": 0.3', '"max_error": 1e999')
+        self.assertRejects(text, "", "malformed JSON")
 
 
 if __name__ == "__main__":

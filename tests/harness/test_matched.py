@@ -4,6 +4,7 @@ then a small run end to end with the real renderer, `path_mis` standing in for a
 technique, through summary, slopes, tables and plots."""
 import contextlib
 import csv
+import dataclasses
 import io
 import json
 import tempfile
@@ -14,6 +15,8 @@ from unittest import mock
 from fixtures import load_config, summary_entry, valid
 from harness import experiment, jobs, paths, references, stats, tables, thresholds
 from harness.errors import HarnessFailure
+from harness.records import (MatchedBudget, OriginalBudget, Run, RunRecord, TechniqueBudget,
+                             index_by_key, read_matched, read_runs, read_summary, to_json)
 
 SEEDS = range(5)
 
@@ -27,10 +30,9 @@ def fixed_config(**profile):
 
 
 def record(technique, kind, budget, seed, time, error):
-    return {"technique": technique, "kind": kind, "budget": budget, "seed": seed,
-            "spp": budget if kind == "spp" else 7, "time": time,
-            "file": f"renders/{technique}/{budget}_seed{seed}.exr",
-            "metrics": {"sigma_over_mu": error, "tvi_err": error, "rmse": error}}
+    return RunRecord(technique, kind, budget, seed, spp=budget if kind == "spp" else 7,
+                     time=time, file=f"renders/{technique}/{budget}_seed{seed}.exr",
+                     metrics={"sigma_over_mu": error, "tvi_err": error, "rmse": error})
 
 
 def fixed_records(times4, times16):
@@ -54,15 +56,14 @@ class MatchedBudgetsTest(unittest.TestCase):
                          {("base", 0.5)})
         with self.assertRaises(ValueError):
             experiment.execute(exp, exp.profiles["quick"],
-                               [experiment.Run("better", "time", 0.5, 0)], Path("unused"),
+                               [Run("better", "time", 0.5, 0)], Path("unused"),
                                Path("unused"), 1)
 
     def test_mean_time_over_seeds_to_one_millisecond_never_zero(self):
         exp = fixed_config()
         records = fixed_records([1e-5] * 5, [0.0101, 0.0119, 0.011, 0.0112, 0.0108])
         self.assertEqual(experiment.matched_budgets(exp, exp.profiles["quick"], records),
-                         [{"technique": "better", "spp": 4, "seconds": 0.001},
-                          {"technique": "better", "spp": 16, "seconds": 0.011}])
+                         [MatchedBudget("better", 4, 0.001), MatchedBudget("better", 16, 0.011)])
         self.assertEqual(experiment.matched_seconds([0.01234, 0.01236]), 0.012)
 
     def test_second_phase_renders_the_time_capable_techniques_interleaved(self):
@@ -77,7 +78,7 @@ class MatchedBudgetsTest(unittest.TestCase):
         exp = fixed_config()
         records = fixed_records([0.003] * 5, [0.5002] * 5)
         matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
-        self.assertEqual(matched[1]["seconds"], 0.5)
+        self.assertEqual(matched[1].seconds, 0.5)
         runs = experiment.matched_runs(exp, exp.profiles["quick"], matched, records)
         self.assertEqual({r.budget for r in runs}, {0.003})
 
@@ -92,22 +93,25 @@ class MatchedBudgetsTest(unittest.TestCase):
         exp = fixed_config()
         records = fixed_records([0.003] * 5, [0.011] * 5)
         matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
-        records += [record("base", "time", m["seconds"], seed, m["seconds"], 0.4 + 0.01 * seed)
+        records += [record("base", "time", m.seconds, seed, m.seconds, 0.4 + 0.01 * seed)
                     for seed in SEEDS for m in matched]
         duplicates = experiment.matched_duplicates(matched, records)
         self.assertEqual(len(duplicates), 2 * 5)
-        originals = [r for r in records if r["technique"] == "better" and r["budget"] == 16]
-        copies = [r for r in duplicates if r["budget"] == 0.011]
+        originals = [r for r in records if r.technique == "better" and r.budget == 16]
+        copies = [r for r in duplicates if r.budget == 0.011]
         for original, copy in zip(originals, copies):
-            self.assertEqual(copy, {**original, "kind": "time", "budget": 0.011,
-                                    "duplicate_of": {"kind": "spp", "budget": 16}})
-        summary = {(s["technique"], s["kind"], s["budget"]): s
-                   for s in experiment.summarise(exp, records + duplicates)}
-        at_time, at_spp = summary[("better", "time", 0.011)], summary[("better", "spp", 16)]
-        self.assertEqual(at_time["metrics"], at_spp["metrics"])
-        self.assertEqual(at_time["duplicate_of"], {"kind": "spp", "budget": 16})
+            self.assertEqual(copy, dataclasses.replace(
+                original, kind="time", budget=0.011, duplicate_of=OriginalBudget("spp", 16)))
+            self.assertEqual(to_json(copy), {**to_json(original), "kind": "time",
+                                             "budget": 0.011,
+                                             "duplicate_of": {"kind": "spp", "budget": 16}})
+        summary = index_by_key(experiment.summarise(exp, records + duplicates))
+        at_time = summary[TechniqueBudget("better", "time", 0.011)]
+        at_spp = summary[TechniqueBudget("better", "spp", 16)]
+        self.assertEqual(at_time.metrics, at_spp.metrics)
+        self.assertEqual(at_time.duplicate_of, OriginalBudget("spp", 16))
         # base 0.4..0.44 against better 0.2..0.24 at 0.011 s: gain 0.42 / 0.22
-        self.assertAlmostEqual(at_time["gain"]["sigma_over_mu"]["value"], 0.42 / 0.22)
+        self.assertAlmostEqual(at_time.gain["sigma_over_mu"].value, 0.42 / 0.22)
         # Each technique's fit gets its points' count instead of a `metrics slope` call.
         with mock.patch.object(experiment.renders, "slope", lambda points, _: len(points)):
             counted = experiment.slopes(exp, records + duplicates, "unused")
@@ -117,15 +121,13 @@ class MatchedBudgetsTest(unittest.TestCase):
 
 def _time_entry(technique, budget, values, gain=None, duplicate_of=None):
     e = summary_entry(technique, "time", budget, values, gain)
-    if duplicate_of:
-        e["duplicate_of"] = duplicate_of
-    return e
+    return to_json(dataclasses.replace(e, duplicate_of=duplicate_of))
 
 
 class MatchedTablesTest(unittest.TestCase):
     def document(self, seconds):
         base, better = [1.0, 1.1, 0.9, 1.05, 0.95], [0.2, 0.22, 0.18, 0.21, 0.19]
-        g = stats.gain(base, better, False).to_json()
+        g = stats.gain(base, better, False)
         return {
             "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
             "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
@@ -133,11 +135,11 @@ class MatchedTablesTest(unittest.TestCase):
             "metrics": ["sigma_over_mu"], "resolution": [8, 8], "seeds": list(SEEDS),
             "table": {"spp": 16, "seconds": seconds}, "paper": [],
             "matched": [{"technique": "better", "spp": 16, "seconds": 0.012}],
-            "summary": [summary_entry("base", "spp", 16, base),
-                        summary_entry("better", "spp", 16, better, g),
+            "summary": [to_json(summary_entry("base", "spp", 16, base)),
+                        to_json(summary_entry("better", "spp", 16, better, g)),
                         _time_entry("base", 0.5, base),
                         _time_entry("base", 0.012, base),
-                        _time_entry("better", 0.012, better, g, {"kind": "spp", "budget": 16})],
+                        _time_entry("better", 0.012, better, g, OriginalBudget("spp", 16))],
             "slopes": {},
             "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
                           "noise_sigma_over_mu": 0.01, "noise_ratio_to_smallest_error": 0.05},
@@ -248,17 +250,25 @@ class MatchedRunTest(unittest.TestCase):
         for original, copy in zip(originals, copies):
             self.assertEqual(copy, {**original, "kind": "time", "budget": self.T,
                                     "duplicate_of": {"kind": "spp", "budget": 8}})
+
         summary = {(s["technique"], s["kind"], s["budget"]): s for s in self.doc["summary"]}
         entry = summary[("path_mis", "time", self.T)]
         self.assertEqual(entry["metrics"], summary[("path_mis", "spp", 8)]["metrics"])
         self.assertIsNotNone(entry["gain"]["sigma_over_mu"])
         self.assertIsNotNone(entry["gain"]["p_eff"])
 
+    def test_records_read_back_as_they_were_written(self):
+        for name, read in (("runs", read_runs), ("summary", read_summary),
+                           ("matched", read_matched)):
+            with self.subTest(name):
+                self.assertEqual(json.dumps([to_json(r) for r in read(self.doc)]),
+                                 json.dumps(self.doc[name]))
+
     def test_slopes_count_each_render_once(self):
         self.assertEqual(self.doc["slopes"]["path_mis"]["vs_spp"]["n"], 2 * 5)
         with tempfile.TemporaryDirectory() as scratch:
             without_copies = experiment.slopes(
-                self.exp, [r for r in self.runs if "duplicate_of" not in r], scratch)
+                self.exp, [r for r in read_runs(self.doc) if r.duplicate_of is None], scratch)
         self.assertEqual(self.doc["slopes"], without_copies)
 
     def test_tables_show_the_matched_rows(self):
@@ -274,7 +284,7 @@ class MatchedRunTest(unittest.TestCase):
 
     def test_calibration_uses_equal_sample_budgets_only(self):
         block = thresholds.calibrate(self.exp, self.doc, [8])
-        self.assertEqual([(c["technique"], c["spp"]) for c in block["checks"]],
+        self.assertEqual([(c.technique, c.spp) for c in block.checks],
                          [("path", 8), ("path_mis", 8)])
 
     def test_plots_draw_the_fixed_technique_against_time_from_its_spp_runs(self):

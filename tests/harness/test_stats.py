@@ -13,7 +13,10 @@ class EstimateTest(unittest.TestCase):
         self.assertAlmostEqual(e.mean, 3.5)
         self.assertAlmostEqual(e.sd, math.sqrt(3.5))
         self.assertAlmostEqual(stats.t_quantile(6), 2.570582, places=5)
-        self.assertAlmostEqual(e.half_width, 2.570582 * math.sqrt(3.5) / math.sqrt(6), places=5)
+        half_width = 2.570582 * math.sqrt(3.5) / math.sqrt(6)
+        self.assertAlmostEqual(e.stderr, math.sqrt(3.5) / math.sqrt(6))
+        self.assertAlmostEqual(e.ci95[0], 3.5 - half_width, places=5)
+        self.assertAlmostEqual(e.ci95[1], 3.5 + half_width, places=5)
 
     def test_one_seed_has_no_interval(self):
         with self.assertRaises(ValueError):

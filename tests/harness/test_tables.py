@@ -5,13 +5,14 @@ import unittest
 
 from fixtures import summary_entry
 from harness import stats, tables
+from harness.records import to_json
 
 BASE = [1.0, 1.1, 0.9, 1.05, 0.95]
 BETTER = [0.2, 0.22, 0.18, 0.21, 0.19]
 
 
 def document():
-    g = stats.gain(BASE, BETTER, False).to_json()
+    g = stats.gain(BASE, BETTER, False)
     return {
         "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
         "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
@@ -20,8 +21,8 @@ def document():
         "table": {"spp": 16, "seconds": None},
         "paper": [{"source": "x", "metric": "sigma_over_mu", "spp": 16,
                    "values": {"base": 1.045, "better": 0.207}}],
-        "summary": [summary_entry("base", "spp", 16, BASE),
-                    summary_entry("better", "spp", 16, BETTER, g)],
+        "summary": [to_json(summary_entry("base", "spp", 16, BASE)),
+                    to_json(summary_entry("better", "spp", 16, BETTER, g))],
         "slopes": {"base": {"vs_spp": {"slope": -0.5, "slope_stderr": 0.01, "r2": 0.99,
                                        "n": 10}}},
         "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
@@ -41,6 +42,13 @@ class TablesTest(unittest.TestCase):
         self.assertIn("reproduced", row)
         self.assertIn("0.207 (16 spp)", row)
         self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | — | — | 10 |", text)
+
+    def test_the_legend_explains_every_verdict(self):
+        legend = tables.markdown("paper", [document()]).split("\n\n")[1]
+        for verdict in ("reproduced", "weaker", "stronger", "inconclusive"):
+            self.assertIn(f"*{verdict}*", legend)
+        self.assertIn("*inconclusive* when our gain is outside the band but its interval "
+                      "reaches into it", legend)
 
     def test_results_of_a_changed_config_are_flagged(self):
         self.assertIn("its config has changed since this run", tables.markdown("paper",
