@@ -102,8 +102,9 @@ def cmd_tables(args: argparse.Namespace) -> int:
 
 
 def cmd_plots(args: argparse.Namespace) -> int:
+    import figures
     from harness import plots
-    for out in plots.write_all(args.profile):
+    for out in plots.write_all(args.profile) + figures.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 

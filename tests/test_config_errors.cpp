@@ -50,6 +50,18 @@ void PrintTo(const BadInput& b, std::ostream* os) {
     *os << b.what;
 }
 
+// A regular polygon of n vertices in the plane z = 0, as a shape override that emits.
+std::string regularPolygon(int n) {
+    std::string vertices;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * M_PI * i / n;
+        vertices += (i ? ",[" : "[") + std::to_string(std::cos(a)) + "," +
+                    std::to_string(std::sin(a)) + ",0]";
+    }
+    return R"(/shapes/0={"type":"polygon","vertices":[)" + vertices +
+           R"(],"emission":{"radiance":1}})";
+}
+
 class ConfigErrorCases : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(ConfigErrorCases, NamesThePointer) {
@@ -109,6 +121,24 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"strategy and estimator both given",
                  {R"(/integrator={"type":"direct","strategy":"mis","estimator":{"type":"light"}})"},
                  "/integrator/strategy"},
+        BadInput{"ris with no candidates",
+                 {R"(/integrator={"type":"ris","mode":"fixed","candidates":0})"},
+                 "/integrator/candidates"},
+        BadInput{
+            "ris robust without a budget", {R"(/integrator={"type":"ris"})"}, "/integrator/budget"},
+        BadInput{"ris fixed with a budget",
+                 {R"(/integrator={"type":"ris","mode":"fixed","budget":20})"},
+                 "/integrator/budget"},
+        BadInput{"ris robust with a fixed M",
+                 {R"(/integrator={"type":"ris","budget":20,"candidates":4})"},
+                 "/integrator/candidates"},
+        BadInput{
+            "ris costs with an unknown key",
+            {R"(/integrator={"type":"ris","budget":20,"costs":{"t_x_ns":1,"t_y_ns":2,"t_z_ns":3}})"},
+            "/integrator/costs/t_z_ns"},
+        BadInput{"ris estimator with an unknown source",
+                 {R"(/integrator={"type":"path_mis","estimator":{"type":"ris","source":"sky"}})"},
+                 "/integrator/estimator/source"},
         BadInput{"unknown estimator",
                  {R"(/integrator={"type":"path_mis","estimator":{"type":"magic"}})"},
                  "/integrator/estimator/type"},
@@ -182,10 +212,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"spp times light_samples beyond 2^24",
                  {"/render/spp=32768", "/integrator={\"type\":\"direct\",\"light_samples\":1024}"},
                  "/render/spp"},
+        BadInput{"polygon source sampling unknown",
+                 {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0,0],[0,1,0]],)"
+                  R"("sampling":"cone","emission":{"radiance":1}})"},
+                 "/shapes/0/sampling"},
         BadInput{"polygon with two vertices",
                  {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0,0]],)"
                   R"("emission":{"radiance":1}})"},
                  "/shapes/0/vertices"},
+        BadInput{"polygon with more than 64 vertices", {regularPolygon(65)}, "/shapes/0/vertices"},
         BadInput{"polygon vertex not a point",
                  {R"(/shapes/0={"type":"polygon","vertices":[[0,0,0],[1,0],[0,1,0]],)"
                   R"("emission":{"radiance":1}})"},

@@ -27,10 +27,10 @@ namespace rr::test {
 namespace {
 
 // Every χ² run in this file: sphere from outside at 3 distances, from inside, quad, disk,
-// two-sided disk from behind, triangle-mesh roof, polygon from two points (10 light-sampling
-// runs), polygon area samples on its plane (1), uniform and power selection (2), and 5
-// negative controls.
-constexpr int kRuns = 18;
+// two-sided disk from behind, triangle-mesh roof, polygon from two points and sampled by area
+// (11 light-sampling runs), polygon area samples on its plane (1), uniform and power selection
+// (2), and 5 negative controls.
+constexpr int kRuns = 19;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
@@ -310,7 +310,7 @@ double polygonArea() {
     }
     return a;
 }
-std::string polygonJson() {
+std::string polygonJson(const std::string& sampling = "solid_angle") {
     std::string vertices;
     char buffer[128];
     for (const Vec3& v : polygonVertices()) {
@@ -318,8 +318,8 @@ std::string polygonJson() {
                       v.x, v.y, v.z);
         vertices += buffer;
     }
-    return R"({"type": "polygon", "vertices": [)" + vertices +
-           R"(], "emission": {"radiance": [1, 2, 3]}})";
+    return R"({"type": "polygon", "vertices": [)" + vertices + R"(], "sampling": ")" + sampling +
+           R"(", "emission": {"radiance": [1, 2, 3]}})";
 }
 
 // In front of the polygon, placed so that every vertex is over a tenth of a cell from the edges
@@ -338,17 +338,18 @@ bool insidePolygon(const Vec2& p) {
 }
 
 // Sampled by solid angle: from kPolygonReference, and from just above the polygon (the fan's
-// spherical triangles then cover most of the hemisphere).
+// spherical triangles then cover most of the hemisphere); and by area from kPolygonReference.
 struct PolygonView {
     const char* id;
     const char* name;
     Vec3 reference;
     uint64_t seed;
+    const char* sampling = "solid_angle";
 };
 class PolygonLight : public ::testing::TestWithParam<PolygonView> {};
 
 TEST_P(PolygonLight, DirectionsFollowPdf) {
-    const LoadedScene s = makeScene(polygonJson());
+    const LoadedScene s = makeScene(polygonJson(GetParam().sampling));
     const Light& light = *s.scene->lights()[0];
     const Vec3 reference = GetParam().reference;
     const Vec3 axis = -kPolygonNormal;
@@ -368,7 +369,8 @@ TEST_P(PolygonLight, DirectionsFollowPdf) {
 const PolygonView kPolygonViews[] = {
     {"Reference", "polygon", kPolygonReference, 47},
     {"Close", "polygon, close",
-     kPolygonCenter + Frame(kPolygonNormal).toWorld(Vec3(-0.1f, 0.2f, 0.05f)), 46}};
+     kPolygonCenter + Frame(kPolygonNormal).toWorld(Vec3(-0.1f, 0.2f, 0.05f)), 46},
+    {"ByArea", "polygon, by area", kPolygonReference, 48, "area"}};
 INSTANTIATE_TEST_SUITE_P(Views, PolygonLight, ::testing::ValuesIn(kPolygonViews),
                          [](const auto& p) { return std::string(p.param.id); });
 

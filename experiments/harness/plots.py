@@ -76,7 +76,7 @@ def convergence(doc: Results, out: Path) -> None:
     fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds, "
                  f"{doc['resolution'][0]}×{doc['resolution'][1]})")
     fig.tight_layout()
-    _save(fig, out)
+    save(fig, out)
 
 
 def read_rgb(file: Path) -> np.ndarray:
@@ -120,11 +120,12 @@ def crops(doc: Results, out: Path) -> bool:
         ax.imshow(_display(rgb), interpolation="nearest")
         ax.set_title(title, fontsize=9)
         ax.axis("off")
-    _save(fig, out)
+    save(fig, out)
     return True
 
 
-def _save(fig: Figure, out: Path) -> None:
+def save(fig: Figure, out: Path) -> None:
+    """Writes the figure to a temporary file and renames it into place, then closes it."""
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(f".{out.stem}.tmp.png")
     fig.savefig(tmp, dpi=110)

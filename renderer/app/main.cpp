@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "app/render_command.h"
+#include "loader/factories.h"
 #include "render/renderer.h"
 
 namespace {
@@ -11,7 +12,10 @@ namespace {
 // validates exactly what the same render command line would render.
 void addSceneOptions(CLI::App* command, rr::RenderCommandOptions& o) {
     command->add_option("scene", o.scene, "scene JSON file")->required();
-    command->add_option("--integrator", o.integrator, "integrator type (path, path_mis, direct)");
+    std::string types;
+    for (const std::string& type : rr::techniqueRegistry().integratorTypes())
+        types += (types.empty() ? "" : ", ") + type;
+    command->add_option("--integrator", o.integrator, "integrator type (" + types + ")");
     command->add_option("--spp", o.spp, "samples per pixel (an upper bound with --time-limit)")
         ->check(CLI::Range(1u, rr::kMaxSpp));
     command->add_option("--seed", o.seed, "random seed");

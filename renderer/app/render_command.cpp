@@ -152,9 +152,14 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.rays.shadow"] = static_cast<double>(stats.rays.shadow);
     a["renderer.nonFiniteSamples"] = static_cast<double>(stats.nonFiniteSamples);
     a["renderer.interrupted"] = stats.interrupted ? 1 : 0;
-    a["renderer.channels"] = std::string(
+    std::string channels =
         "R,G,B: mean radiance; variance.R,variance.G,variance.B: variance of the pixel mean; "
-        "samples: samples in the pixel");
+        "samples: samples in the pixel";
+    for (AuxiliaryChannel& channel : p.loaded.integrator->auxiliaryChannels()) {
+        channels += "; " + channel.name + ": " + channel.description;
+        image->channels[channel.name] = std::move(channel.values);
+    }
+    a["renderer.channels"] = channels;
 }
 
 // Writes the EXR and the preview with SIGINT held back, so Ctrl-C cannot interrupt a write

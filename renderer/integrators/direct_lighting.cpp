@@ -1,5 +1,6 @@
 #include "integrators/direct_lighting.h"
 
+#include "integrators/light_sample_estimator.h"
 #include "integrators/scattering_vertex.h"
 
 namespace rr {
@@ -14,31 +15,20 @@ nlohmann::json DirectLighting::parameters() const {
 Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                              RayCounters& rays) const {
     StandardSampling standard(scene, sample);
-    float cameraWeight;
-    const Ray cameraRay = standard.cameraRay(x, y, &cameraWeight);
-    ++rays.camera;
-    SurfaceHit hit;
-    if (!scene.intersect(cameraRay, &hit))
-        return escapedRadiance(scene, cameraRay.direction, [](const Light&) { return 1.0f; });
-
-    Rgb radiance(0.0f);
-    if (const AreaLight* light = hit.shape->areaLight())
-        radiance += light->emitted(hit.geometricNormal, -cameraRay.direction);
-    const Material* material = hit.shape->material();
-    if (!material || !material->hasNonSpecular()) return radiance;
-
-    const Frame frame = hit.shadingFrame();
-    const Vec3 wo = frame.toLocal(-cameraRay.direction);
-    const ShadingContext ctx{hit.uv, hit.position};
-    if (estimator_->lightSamples() > 0) {
-        const Rgb unscaled(1.0f);
-        const VertexOutput<StandardSampling> out{standard, 0, unscaled, radiance, rays};
-        SurfaceVertex<false, StandardSampling> point(out, hit, *material, ctx, frame, wo, nullptr,
-                                                     static_cast<float>(tracedBsdfSamples()));
-        estimator_->estimate(point);
-    }
-    addBsdfSamples(standard, hit, *material, ctx, frame, wo, rays, &radiance);
-    return radiance;
+    return shadeFirstHit(
+        scene, standard, x, y, rays,
+        [&](const SurfaceHit& hit, const Material& material, const ShadingContext& ctx,
+            const Frame& frame, const Vec3& wo, Rgb* radiance) {
+            if (estimator_->lightSamples() > 0) {
+                const Rgb unscaled(1.0f);
+                const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays};
+                SurfaceVertex<false, StandardSampling> point(
+                    out, hit, material, ctx, frame, wo, nullptr,
+                    static_cast<float>(tracedBsdfSamples()));
+                runEstimator(*estimator_, point);
+            }
+            addBsdfSamples(standard, hit, material, ctx, frame, wo, rays, radiance);
+        });
 }
 
 void DirectLighting::addBsdfSamples(const StandardSampling& standard, const SurfaceHit& hit,

@@ -15,6 +15,32 @@
 
 namespace rr {
 
+// The radiance a camera ray of pixel (x, y) finds up to its first hit: the infinite lights when
+// it escapes, the emission of what it hits, and at a surface with a non-specular lobe whatever
+// `shade(hit, material, ctx, frame, wo, &radiance)` adds (scenes without media).
+template <class Shade>
+Rgb shadeFirstHit(const Scene& scene, StandardSampling& standard, int x, int y, RayCounters& rays,
+                  const Shade& shade) {
+    float cameraWeight;
+    const Ray cameraRay = standard.cameraRay(x, y, &cameraWeight);
+    ++rays.camera;
+    SurfaceHit hit;
+    if (!scene.intersect(cameraRay, &hit))
+        return escapedRadiance(scene, cameraRay.direction, [](const Light&) { return 1.0f; });
+
+    Rgb radiance(0.0f);
+    if (const AreaLight* light = hit.shape->areaLight())
+        radiance += light->emitted(hit.geometricNormal, -cameraRay.direction);
+    const Material* material = hit.shape->material();
+    if (!material || !material->hasNonSpecular()) return radiance;
+
+    const Frame frame = hit.shadingFrame();
+    const Vec3 wo = frame.toLocal(-cameraRay.direction);
+    const ShadingContext ctx{hit.uv, hit.position};
+    shade(hit, *material, ctx, frame, wo, &radiance);
+    return radiance;
+}
+
 class DirectLighting final : public SampleIntegrator {
   public:
     DirectLighting(std::unique_ptr<DirectLightingEstimator> estimator, uint32_t bsdfSamples)

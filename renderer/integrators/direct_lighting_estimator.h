@@ -27,6 +27,8 @@ enum class FoundEmission : uint8_t {
     Excluded,  // the estimate covers all of it: finding it again would count it twice
 };
 
+class LightSampleEstimator;
+
 class DirectLightingEstimator {
   public:
     virtual ~DirectLightingEstimator() = default;
@@ -38,10 +40,27 @@ class DirectLightingEstimator {
     virtual FoundEmission foundEmission() const = 0;
     // The most draws of one decision an estimate makes (DecisionSite::repeatCount).
     virtual uint32_t decisionRepeats() const { return lightSamples(); }
+    // False for estimators that sample directions and find emission along them
+    // (ShadingPoint::incidentEmission), which scenes with media do not provide.
+    virtual bool worksInMedia() const { return true; }
 
     // Estimates the direct light at `point` towards the viewer, adding each sample's
     // contribution to the point (ShadingPoint::add).
     virtual void estimate(ShadingPoint& point) const = 0;
+
+    // This estimator as light sampling (`light`, `mis`), or nullptr: the common case, which
+    // runEstimator() calls without the interface's indirection.
+    const LightSampleEstimator* lightSampling() const { return lightSampling_; }
+
+    DirectLightingEstimator(const DirectLightingEstimator&) = delete;
+    DirectLightingEstimator& operator=(const DirectLightingEstimator&) = delete;
+
+  protected:
+    DirectLightingEstimator() = default;
+    explicit DirectLightingEstimator(const LightSampleEstimator* self) : lightSampling_(self) {}
+
+  private:
+    const LightSampleEstimator* lightSampling_ = nullptr;
 };
 
 // The weight of emission found by `scatterSamples` scattering samples of density `scatterPdf`,

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "math/rgb.h"
 #include "sampling/sampler.h"
@@ -34,6 +35,14 @@ struct RayCounters {
     }
 };
 
+// A per-pixel image an integrator computes besides radiance (RIS's optimal M/N), written as an
+// extra channel of the output; `values` row-major, one per pixel.
+struct AuxiliaryChannel {
+    std::string name;
+    std::string description;
+    std::vector<float> values;
+};
+
 class Integrator {
   public:
     virtual ~Integrator() = default;
@@ -47,6 +56,8 @@ class Integrator {
     // adapts to the scene's contents resolves its choices here (and throws ConfigError for a
     // choice the scene cannot support).
     virtual void prepare(const Scene& /*scene*/) {}
+    // Channels besides radiance, once the render is done.
+    virtual std::vector<AuxiliaryChannel> auxiliaryChannels() const { return {}; }
 };
 
 class SampleIntegrator : public Integrator {

@@ -11,7 +11,7 @@ namespace rr {
 class LightSampleEstimator final : public DirectLightingEstimator {
   public:
     LightSampleEstimator(uint32_t lightSamples, bool multipleImportance)
-        : lightSamples_(lightSamples), mis_(multipleImportance) {}
+        : DirectLightingEstimator(this), lightSamples_(lightSamples), mis_(multipleImportance) {}
 
     std::string name() const override { return mis_ ? "mis" : "light"; }
     nlohmann::json parameters() const override;
@@ -19,12 +19,47 @@ class LightSampleEstimator final : public DirectLightingEstimator {
     FoundEmission foundEmission() const override {
         return mis_ ? FoundEmission::Weighted : FoundEmission::Excluded;
     }
-    void estimate(ShadingPoint& point) const override;
+    void estimate(ShadingPoint& point) const override { estimateAt(point); }
+    // The estimate at a shading point of the integrator's own (final) type, whose calls are then
+    // direct: the hot loop of `direct` and of path vertices.
+    template <class Point>
+    void estimateAt(Point& point) const;
 
   private:
     uint32_t lightSamples_;
     bool mis_;
 };
+
+template <class Point>
+void LightSampleEstimator::estimateAt(Point& point) const {
+    const float n = static_cast<float>(lightSamples_);
+    for (uint32_t r = 0; r < lightSamples_; ++r) {
+        LightSample ls;
+        float pdf;
+        const Light* light;
+        if (!point.sampleLight(r, lightSamples_, &ls, &pdf, &light)) continue;
+        const Rgb f = point.scattering(ls.direction);
+        if (f.isBlack()) continue;
+        float survival;
+        const Rgb tr = point.visibility(ls, light->isInfinite(), &survival);
+        if (tr.isBlack()) continue;
+        // A delta light cannot be found by scattering: its samples count in full.
+        const float weight = mis_ && !ls.isDelta
+                                 ? powerHeuristic(n, pdf, point.scatteringSamples(),
+                                                  point.scatteringPdf(ls.direction) * survival)
+                                 : 1.0f;
+        point.add(point.contribution(f, ls.radiance, tr, weight, pdf * n));
+    }
+}
+
+// Runs `estimator` at `point`, light sampling without the interface's indirection.
+template <class Point>
+void runEstimator(const DirectLightingEstimator& estimator, Point& point) {
+    if (const LightSampleEstimator* light = estimator.lightSampling())
+        light->estimateAt(point);
+    else
+        estimator.estimate(point);
+}
 
 // No light samples: emission is found by the integrator's scattering samples alone (`bsdf`).
 class ScatteringOnlyEstimator final : public DirectLightingEstimator {

@@ -1,5 +1,6 @@
 #include "integrators/path_tracer.h"
 
+#include "config/config_error.h"
 #include "integrators/light_sample_estimator.h"
 #include "integrators/path_walk.h"
 
@@ -15,6 +16,13 @@ nlohmann::json PathTracer::parameters() const {
         {"type", name()}, {"max_depth", settings_.maxDepth}, {"rr_depth", settings_.rrDepth}};
     if (nee_->lightSamples() > 0) p["estimator"] = nee_->parameters();
     return p;
+}
+
+void PathTracer::prepare(const Scene& scene) {
+    if (scene.features().media && !nee_->worksInMedia())
+        throw ConfigError("/integrator/estimator/type",
+                          "estimator '" + nee_->name() +
+                              "' samples directions and cannot render participating media");
 }
 
 Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sample,

@@ -52,6 +52,8 @@ class PathTracer final : public SampleIntegrator {
                  RayCounters& rays) const override;
 
     uint32_t decisionRepeats() const override { return std::max(1u, nee_->decisionRepeats()); }
+    // Refuses an estimator that cannot work in the scene's media.
+    void prepare(const Scene& scene) override;
 
   private:
     PathTracer(std::string name, const PathSettings& settings,

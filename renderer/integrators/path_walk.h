@@ -17,7 +17,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "integrators/direct_lighting_estimator.h"
+#include "integrators/light_sample_estimator.h"
 #include "integrators/medium_tracking.h"
 #include "integrators/path_tracer.h"
 #include "integrators/scattering_vertex.h"
@@ -234,7 +234,7 @@ bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const Vec3& position
 template <bool kMedia, PathGuide Guide>
 template <class Point>
 void PathWalk<kMedia, Guide>::estimateDirectLight(Point&& point) {
-    if (nee_.lightSamples() > 0) nee_.estimate(point);
+    if (nee_.lightSamples() > 0) runEstimator(nee_, point);
 }
 
 // One path of pixel (x, y), its camera ray from `guide`, through the walk compiled with or

@@ -5,6 +5,8 @@
 // radiance the path gathers.
 #pragma once
 
+#include <stdexcept>
+
 #include "integrators/medium_tracking.h"
 #include "integrators/shading_point.h"
 #include "integrators/standard_sampling.h"
@@ -39,6 +41,12 @@ struct VertexOutput {
         const Rgb scaled = throughput * contribution;
         guide.lightContribution(vertex, scaled);
         radiance += scaled;
+    }
+    float decide1D(Decision d, uint32_t repeat, uint32_t count) const {
+        return guide.sample().get1D(DecisionSite{d, vertex, repeat, count});
+    }
+    Vec2 decide2D(Decision d, uint32_t repeat, uint32_t count) const {
+        return guide.sample().get2D(DecisionSite{d, vertex, repeat, count});
     }
 };
 
@@ -81,6 +89,35 @@ class SurfaceVertex final : public ShadingPoint {
     Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
                      float density) const override {
         return f * le * tr * (misWeight / density);
+    }
+    float decide1D(Decision d, uint32_t repeat, uint32_t count) const override {
+        return out_.decide1D(d, repeat, count);
+    }
+    Vec2 decide2D(Decision d, uint32_t repeat, uint32_t count) const override {
+        return out_.decide2D(d, repeat, count);
+    }
+    const Frame* frame() const override { return &frame_; }
+    bool sampleScattering(float uLobe, const Vec2& u, Vec3* wi, float* pdf) const override {
+        BsdfSample bs;
+        if (!material_.sample(ctx_, wo_, uLobe, u, &bs) || bs.isSpecular()) return false;
+        *wi = frame_.toWorld(bs.wi);
+        *pdf = bs.pdf;
+        return true;
+    }
+    Rgb incidentEmission(const Vec3& wi) override {
+        if constexpr (kMedia) {
+            // Refused at load (DirectLightingEstimator::worksInMedia): transmittance to the
+            // emitter would need the medium walk.
+            throw std::logic_error("incidentEmission in a scene with media");
+        } else {
+            ++out_.rays.extension;
+            const Scene& scene = out_.guide.scene();
+            SurfaceHit lightHit;
+            if (!scene.intersect(hit_.spawn(wi), &lightHit))
+                return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
+            const AreaLight* light = lightHit.shape->areaLight();
+            return light ? light->emitted(lightHit.geometricNormal, -wi) : Rgb(0.0f);
+        }
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
 
@@ -127,6 +164,21 @@ class MediumVertex final : public ShadingPoint {
     Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
                      float density) const override {
         return le * tr * (f.r * misWeight / density);
+    }
+    float decide1D(Decision d, uint32_t repeat, uint32_t count) const override {
+        return out_.decide1D(d, repeat, count);
+    }
+    Vec2 decide2D(Decision d, uint32_t repeat, uint32_t count) const override {
+        return out_.decide2D(d, repeat, count);
+    }
+    const Frame* frame() const override { return nullptr; }
+    bool sampleScattering(float, const Vec2& u, Vec3* wi, float* pdf) const override {
+        *pdf = medium_.phase().sample(wo_, u, wi);
+        return *pdf > 0;
+    }
+    Rgb incidentEmission(const Vec3&) override {
+        // Refused at load (DirectLightingEstimator::worksInMedia).
+        throw std::logic_error("incidentEmission at a point in a medium");
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
 

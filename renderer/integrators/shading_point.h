@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "math/frame.h"
 #include "math/rgb.h"
 #include "sampling/sampler.h"
 #include "scene/light.h"
@@ -38,6 +39,21 @@ class ShadingPoint {
     // function, a scalar, which joins the scalar factor.
     virtual Rgb contribution(const Rgb& f, const Rgb& le, const Rgb& tr, float misWeight,
                              float density) const = 0;
+    // A coordinate of decision `d` at this vertex, draw `repeat` of `count`: for estimators
+    // that make decisions of their own (resampling's candidate counts and choices).
+    virtual float decide1D(Decision d, uint32_t repeat, uint32_t count) const = 0;
+    virtual Vec2 decide2D(Decision d, uint32_t repeat, uint32_t count) const = 0;
+    // The surface's shading frame (z along the shading normal); nullptr in a medium.
+    virtual const Frame* frame() const = 0;
+    // A direction drawn from the vertex's own scattering distribution (BSDF or phase
+    // function) with the given coordinates, and its density; false when none was drawn or the
+    // draw is specular (no estimator that weighs directions can use it).
+    virtual bool sampleScattering(float uLobe, const Vec2& u, Vec3* wi, float* pdf) const = 0;
+    // The emitted radiance arriving from direction `wi`: the area light a ray leaving the
+    // point hits, or the infinite lights when it escapes (one extension ray). Estimators that
+    // sample directions rather than lights use it; surface points in scenes without media only
+    // (DirectLightingEstimator::worksInMedia).
+    virtual Rgb incidentEmission(const Vec3& wi) = 0;
     // Adds one light sample's contribution to the radiance the integrator gathers, scaled by
     // what the path carries to this point (a technique's guide hears of it too: TAIS credits
     // its light maps with it).

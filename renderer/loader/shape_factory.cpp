@@ -62,7 +62,10 @@ std::unique_ptr<Shape> makePolygon(ObjectReader& j, const Transform& t, const As
         throw ConfigError(j.pointerTo("vertices") + "/" + std::to_string(problem->vertex),
                           "vertex " + std::to_string(problem->vertex) + " " + problem->message);
     }
-    return std::make_unique<Polygon>(vertices);
+    // As an emitter: "solid_angle" (Arvo 1995) or "area" (cheaper, a worse density).
+    const std::string sampling = j.getChoice("sampling", {"solid_angle", "area"}, "solid_angle");
+    return std::make_unique<Polygon>(
+        vertices, sampling == "area" ? PolygonSampling::Area : PolygonSampling::SolidAngle);
 }
 
 std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const AssetResolver& assets) {

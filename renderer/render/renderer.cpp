@@ -134,7 +134,8 @@ RenderStats render(RenderSchedule& schedule, const RenderOptions& options, Film&
             stats.complete = false;
             break;
         }
-        stats.complete = true;
+        // A round that keeps no samples (a technique's pilot) completes no image.
+        if (kept > 0) stats.complete = true;
         timing.lastRoundSeconds = secondsSince(roundStart);
         timing.lastRoundSamples = totals.kept;
         reporter.setSppDone(static_cast<uint32_t>(kept / pixels));

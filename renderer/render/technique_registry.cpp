@@ -54,4 +54,11 @@ std::vector<std::string> TechniqueRegistry::mediaIntegrators() const {
     return types;
 }
 
+std::vector<std::string> TechniqueRegistry::integratorTypes() const {
+    std::vector<std::string> types;
+    for (const auto& entry : integrators_)
+        types.push_back(entry.first);
+    return types;
+}
+
 }  // namespace rr

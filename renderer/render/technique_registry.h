@@ -64,6 +64,8 @@ class TechniqueRegistry {
     bool rendersMedia(const std::string& integratorType) const;
     // The integrator types that render media, for messages.
     std::vector<std::string> mediaIntegrators() const;
+    // Every integrator type, in order.
+    std::vector<std::string> integratorTypes() const;
 
   private:
     struct IntegratorEntry {

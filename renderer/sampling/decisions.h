@@ -18,6 +18,11 @@ enum class Decision : uint8_t {
     BsdfDirection,    // 2-D: direction within the chosen lobe
     MediumDistance,   // 1-D: free-flight distance in a participating medium
     RussianRoulette,  // 1-D: path termination
+    // Resampled importance sampling (techniques/ris):
+    ResampleCount,       // 1-D: random rounding of a fractional candidate or sample count
+    ResampleSelect,      // 1-D: whether the reservoir keeps a candidate
+    CandidateLobe,       // 1-D: lobe of a candidate drawn from the BSDF
+    CandidateDirection,  // 2-D: direction of a candidate drawn from a directional source
     Count
 };
 
@@ -27,6 +32,7 @@ constexpr int dimensionCount(Decision d) {
         case Decision::Lens:
         case Decision::LightPoint:
         case Decision::BsdfDirection:
+        case Decision::CandidateDirection:
             return 2;
         default:
             return 1;
@@ -53,6 +59,14 @@ constexpr const char* decisionName(Decision d) {
             return "medium_distance";
         case Decision::RussianRoulette:
             return "russian_roulette";
+        case Decision::ResampleCount:
+            return "resample_count";
+        case Decision::ResampleSelect:
+            return "resample_select";
+        case Decision::CandidateLobe:
+            return "candidate_lobe";
+        case Decision::CandidateDirection:
+            return "candidate_direction";
         case Decision::Count:
             break;
     }

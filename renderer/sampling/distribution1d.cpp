@@ -11,34 +11,45 @@ Distribution1D::Distribution1D(std::span<const float> weights) {
     double total = 0;
     for (float w : weights)
         total += w;
-    pmf_.resize(n);
-    cdf_.resize(n + 1);
-    cdf_[0] = 0;
+    entries_.assign(n + 1, Entry{0, 0, 0});
     for (size_t i = 0; i < n; ++i) {
         const double p = total > 0 ? weights[i] / total : 1.0 / static_cast<double>(n);
-        pmf_[i] = static_cast<float>(p);
-        cdf_[i + 1] = cdf_[i] + p;
+        entries_[i].pmf = static_cast<float>(p);
+        entries_[i + 1].cdf = entries_[i].cdf + p;
     }
-    if (n > 0) cdf_[n] = 1.0;
+    if (n > 0) entries_[n].cdf = 1.0;
+    size_t last = 0;
+    for (size_t k = 0; k < n; ++k) {
+        const double start = double(k) / double(n);
+        while (last + 1 < n && entries_[last + 1].cdf <= start)
+            ++last;
+        entries_[k].guide = static_cast<uint32_t>(last);
+    }
 }
 
 int Distribution1D::sample(float u, float* pmf, float* uRemapped) const {
-    // Last i with cdf_[i] <= u, skipping zero-probability entries.
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
-    int i = std::clamp(static_cast<int>(it - cdf_.begin()) - 1, 0, size() - 1);
-    while (pmf_[i] == 0 && i + 1 < size())
+    // The last i with cdf_i ≤ u, then past zero-probability entries. u·n is exact in double
+    // (24-bit u, n < 2^29), so the slice's start ⌊u·n⌋/n is at most u.
+    const size_t n = entries_.size() - 1;
+    const double x = static_cast<double>(u);
+    const size_t slice = std::min(static_cast<size_t>(std::max(x, 0.0) * double(n)), n - 1);
+    size_t i = entries_[slice].guide;
+    while (i + 1 < n && entries_[i + 1].cdf <= x)
         ++i;
-    if (pmf) *pmf = pmf_[i];
+    while (entries_[i].pmf == 0 && i + 1 < n)
+        ++i;
+    if (pmf) *pmf = entries_[i].pmf;
     if (uRemapped) {
-        const double width = cdf_[i + 1] - cdf_[i];
-        const double r = width > 0 ? (u - cdf_[i]) / width : 0.0;
+        const double width = entries_[i + 1].cdf - entries_[i].cdf;
+        const double r = width > 0 ? (x - entries_[i].cdf) / width : 0.0;
         *uRemapped = std::min(static_cast<float>(r), kOneMinusEpsilon);
     }
-    return i;
+    return static_cast<int>(i);
 }
 
 float Distribution1D::invert(int index, float uRemapped) const {
-    const double u = cdf_[index] + double(uRemapped) * (cdf_[index + 1] - cdf_[index]);
+    const Entry& e = entries_[size_t(index)];
+    const double u = e.cdf + double(uRemapped) * (entries_[size_t(index) + 1].cdf - e.cdf);
     return std::min(static_cast<float>(u), kOneMinusEpsilon);
 }
 

@@ -17,79 +17,31 @@
 #include <vector>
 
 #include "support/chi2.h"
-#include "support/scene_testing.h"
+#include "support/mean_agreement.h"
 
 namespace rr::test {
 namespace {
 
 constexpr int kSize = 32, kBlock = 8;
 constexpr int kScenes = 7;
-// Tests per scene: 3 channels × (image + 16 blocks).
-constexpr int kTestsPerScene = 3 * (1 + (kSize / kBlock) * (kSize / kBlock));
-
-struct Region {
-    int x0, y0, x1, y1;
-};
-
-std::vector<Region> regions() {
-    std::vector<Region> r{{0, 0, kSize, kSize}};
-    for (int y = 0; y < kSize; y += kBlock)
-        for (int x = 0; x < kSize; x += kBlock)
-            r.push_back({x, y, x + kBlock, y + kBlock});
-    return r;
-}
 
 LoadedScene scene(const std::string& file, const std::string& integrator) {
     return loadSceneFile(file, {"/render/resolution=[32,32]", "/integrator=" + integrator});
 }
 
-// The mean over seeds of a region's mean, with its standard error.
-Estimate meanOverSeeds(const std::vector<TestRender>& renders, int c, const Region& r) {
-    double sum = 0, variance = 0;
-    for (const TestRender& render : renders) {
-        const Estimate e = regionMean(render.film, c, r.x0, r.y0, r.x1, r.y1);
-        sum += e.mean;
-        variance += e.standardError * e.standardError;
-    }
-    const double n = double(renders.size());
-    return {sum / n, std::sqrt(variance) / n};
-}
-
-// The largest |z| over all regions and channels, and where.
-struct Worst {
-    double z = 0;
-    std::string where;
-};
-
-Worst compare(const std::string& file, const std::string& tais, uint32_t seeds, uint32_t spp,
-              uint32_t referenceSpp) {
+Disagreement compare(const std::string& file, const std::string& tais, uint32_t seeds, uint32_t spp,
+                     uint32_t referenceSpp) {
     const LoadedScene reference = scene(file, R"({"type":"path_mis"})");
     const TestRender ref = renderScene(reference, referenceSpp, /*seed=*/1000);
     const LoadedScene adaptive = scene(file, tais);
     std::vector<TestRender> renders;
     for (uint32_t seed = 1; seed <= seeds; ++seed)
         renders.push_back(renderScene(adaptive, spp, seed));
-    Worst worst;
-    for (const Region& r : regions())
-        for (int c = 0; c < 3; ++c) {
-            const Estimate a = meanOverSeeds(renders, c, r);
-            const Estimate b = regionMean(ref.film, c, r.x0, r.y0, r.x1, r.y1);
-            const double se = std::hypot(a.standardError, b.standardError);
-            const double z = se > 0 ? std::abs(a.mean - b.mean) / se : (a.mean == b.mean ? 0 : 1e9);
-            if (z > worst.z) {
-                worst.z = z;
-                worst.where = "channel " + std::to_string(c) + ", pixels [" + std::to_string(r.x0) +
-                              "," + std::to_string(r.x1) + ")×[" + std::to_string(r.y0) + "," +
-                              std::to_string(r.y1) + "): TAIS " + std::to_string(a.mean) + " ± " +
-                              std::to_string(a.standardError) + ", reference " +
-                              std::to_string(b.mean) + " ± " + std::to_string(b.standardError);
-            }
-        }
-    return worst;
+    return largestDisagreement(renders, ref.film, kBlock, "TAIS");
 }
 
 double threshold() {
-    return zThreshold(sidakAlpha(0.01, kScenes * kTestsPerScene));
+    return zThreshold(sidakAlpha(0.01, kScenes * regionTests(kSize, kSize, kBlock)));
 }
 
 struct Case {
@@ -102,7 +54,7 @@ class TaisUnbiased : public ::testing::TestWithParam<Case> {};
 
 TEST_P(TaisUnbiased, MeanOverSeedsMatchesALongPathMisRender) {
     const Case& c = GetParam();
-    const Worst w = compare(c.scene, c.integrator, c.seeds, c.spp, c.referenceSpp);
+    const Disagreement w = compare(c.scene, c.integrator, c.seeds, c.spp, c.referenceSpp);
     std::printf("largest |z| %.2f (threshold %.2f) at %s\n", w.z, threshold(), w.where.c_str());
     EXPECT_LT(w.z, threshold()) << c.scene << " with " << c.integrator << ": " << w.where;
 }
@@ -133,7 +85,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(TaisUnbiasedNegativeControl, TheMaximumContributionFilterIsDetectedAsBiased) {
-    const Worst w =
+    const Disagreement w =
         compare("tais_fig7_glass_caustic.json",
                 R"({"type":"tais","maps":"auto","contribution_filter":true})", 4, 8, 4096);
     std::printf("largest |z| %.2f (threshold %.2f) at %s\n", w.z, threshold(), w.where.c_str());

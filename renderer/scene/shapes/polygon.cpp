@@ -42,6 +42,9 @@ Plane fitPlane(std::span<const Vec3> vertices) {
 std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices) {
     const int n = static_cast<int>(vertices.size());
     if (n < 3) return PolygonProblem{-1, "a polygon needs at least 3 vertices"};
+    if (n > Polygon::kMaxVertices)
+        return PolygonProblem{
+            -1, "a polygon has at most " + std::to_string(Polygon::kMaxVertices) + " vertices"};
     const Plane plane = fitPlane(vertices);
     const double r = plane.size;
     for (int i = 0; i < n; ++i)
@@ -73,7 +76,7 @@ std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices)
     return std::nullopt;
 }
 
-Polygon::Polygon(std::span<const Vec3> vertices) {
+Polygon::Polygon(std::span<const Vec3> vertices, PolygonSampling sampling) : sampling_(sampling) {
     const Plane plane = fitPlane(vertices);
     normal_ = normalize(plane.normal.toFloat());
     for (const DVec3& p : plane.p)  // projected onto the plane
@@ -140,21 +143,30 @@ ShapeSample Polygon::sampleArea(Vec2 u) const {
     return s;
 }
 
-double Polygon::solidAngle(const Vec3& reference, const Vec3& offset) const {
+double Polygon::fanAreas(const Vec3& reference, const Vec3& offset,
+                         std::array<double, kMaxVertices>* areas) const {
     const DVec3 r(reference), v0 = normalize(DVec3(vertices_[0] + offset) - r);
     double total = 0;
     DVec3 previous = normalize(DVec3(vertices_[1] + offset) - r);
     for (size_t k = 2; k < vertices_.size(); ++k) {
         const DVec3 next = normalize(DVec3(vertices_[k] + offset) - r);
-        total += sphericalTriangleArea(v0, previous, next);
+        (*areas)[k] = sphericalTriangleArea(v0, previous, next);
+        total += (*areas)[k];
         previous = next;
     }
     return total;
 }
 
+double Polygon::solidAngle(const Vec3& reference, const Vec3& offset) const {
+    std::array<double, kMaxVertices> areas;
+    return fanAreas(reference, offset, &areas);
+}
+
 bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
+    if (sampling_ == PolygonSampling::Area) return Shape::sampleDirection(reference, u, time, out);
     const Vec3 offset = offsetAt(time);
-    const double total = solidAngle(reference, offset);
+    std::array<double, kMaxVertices> areas;
+    const double total = fanAreas(reference, offset, &areas);
     if (!(total >= kMinSolidAngle)) return Shape::sampleDirection(reference, u, time, out);
     // The fan triangles project onto the sphere of directions without overlap (the polygon is
     // convex and planar): pick one with probability ∝ its solid angle, reusing u.x.
@@ -162,15 +174,15 @@ bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSa
     const double target = double(u.x) * total;
     double before = 0;
     for (size_t k = 2; k < vertices_.size(); ++k) {
-        const DVec3 a = normalize(DVec3(vertices_[k - 1] + offset) - r);
-        const DVec3 b = normalize(DVec3(vertices_[k] + offset) - r);
-        const double area = sphericalTriangleArea(v0, a, b);
+        const double area = areas[k];
         if (before + area <= target && k + 1 < vertices_.size()) {
             before += area;
             continue;
         }
         if (!(area > 0)) return false;  // a degenerate last triangle, reached by rounding
         const float remapped = float(std::clamp((target - before) / area, 0.0, 1.0));
+        const DVec3 a = normalize(DVec3(vertices_[k - 1] + offset) - r);
+        const DVec3 b = normalize(DVec3(vertices_[k] + offset) - r);
         const DVec3 w = sampleSphericalTriangle(v0, a, b, area,
                                                 Vec2(std::min(remapped, kOneMinusEpsilon), u.y));
         // Where the direction meets the polygon's plane.
@@ -188,6 +200,7 @@ bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSa
 }
 
 float Polygon::directionPdf(const Vec3& reference, const SurfaceHit& hit) const {
+    if (sampling_ == PolygonSampling::Area) return Shape::directionPdf(reference, hit);
     const double total = solidAngle(reference, offsetAt(hit.time));
     if (!(total >= kMinSolidAngle)) return Shape::directionPdf(reference, hit);
     return float(1 / total);

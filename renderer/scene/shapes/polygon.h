@@ -4,13 +4,17 @@
 // it subtends (Arvo 1995, which the RIS paper cites): a fan triangle with probability ∝ its
 // spherical area, then a uniform direction in that spherical triangle. When it subtends less
 // than kMinSolidAngle (far away, or seen edge-on), uniform sampling by area instead: a fan
-// triangle with probability ∝ its area, then a uniform point in it.
+// triangle with probability ∝ its area, then a uniform point in it. Sampling by area can also
+// be chosen outright (PolygonSampling::Area): a worse density at a fraction of the cost, which
+// is what resampling wants of its source density (RIS, Talbot et al. 2005 §4.2: "g and p
+// should be computationally cheap to sample and evaluate").
 //
 // uv: planar coordinates along û = (v1 − v0)/|v1 − v0| and v̂ = n × û, each rescaled to [0, 1]
 // over the polygon's extent. A rectangle given as (corner, corner + edge_u, corner + edge_u +
 // edge_v, corner + edge_v) thus gets the uv of the equivalent quad.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -34,10 +38,13 @@ struct PolygonProblem {
 // same way at every vertex (collinear vertices allowed) and winding around exactly once.
 std::optional<PolygonProblem> checkConvexPolygon(std::span<const Vec3> vertices);
 
+enum class PolygonSampling : uint8_t { SolidAngle, Area };
+
 class Polygon final : public Shape {
   public:
     // `vertices` must pass checkConvexPolygon; they are projected onto the polygon's plane.
-    explicit Polygon(std::span<const Vec3> vertices);
+    explicit Polygon(std::span<const Vec3> vertices,
+                     PolygonSampling sampling = PolygonSampling::SolidAngle);
 
     RTCGeometry createGeometry(RTCDevice device) const override;
     void completeHit(const Ray& ray, const RTCHit& hit, SurfaceHit* out) const override;
@@ -55,14 +62,24 @@ class Polygon final : public Shape {
     // and Arvo's inversion loses digits to cancellation (terms of order Ω from terms of order
     // 1; in double precision still ~1e-12 relative at 1e-4 sr).
     static constexpr double kMinSolidAngle = 1e-4;
+    // The most vertices a polygon may have (the solid-angle sampler keeps a view of all of
+    // them on the stack).
+    static constexpr int kMaxVertices = 64;
 
   private:
+    // The spherical areas of the fan triangles (v0, vk−1, vk) seen from `reference`, at index
+    // k ≥ 2 of *areas (left uninitialised elsewhere), and their sum: computed once per light
+    // sample, for both the choice of a triangle and the sample in it.
+    double fanAreas(const Vec3& reference, const Vec3& offset,
+                    std::array<double, kMaxVertices>* areas) const;
+
     std::vector<Vec3> vertices_;
     Vec3 normal_;
     Vec3 uvOrigin_, uAxis_, vAxis_;  // uv = (dot(p − uvOrigin_, uAxis_), dot(…, vAxis_))
     float area_ = 0;
     float errorScale_ = 0;
     Distribution1D fanByArea_;  // over the triangles (v0, vk, vk+1), k = 1 … n−2
+    PolygonSampling sampling_;
 };
 
 }  // namespace rr

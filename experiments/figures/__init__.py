@@ -1,0 +1,15 @@
+"""Paper figures that are not error tables or convergence plots: each module's
+write(profile_name) computes or renders what it needs and returns the files it wrote.
+`make plots` (and so `make run` and `make reproduce`) writes them after the harness's plots."""
+from pathlib import Path
+
+from . import ris_fig01_resampling, ris_fig03_m_over_n
+
+FIGURES = [ris_fig01_resampling, ris_fig03_m_over_n]
+
+
+def write_all(profile_name: str) -> list[Path]:
+    written: list[Path] = []
+    for figure in FIGURES:
+        written += figure.write(profile_name)
+    return written

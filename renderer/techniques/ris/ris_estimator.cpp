@@ -1,0 +1,210 @@
+#include "techniques/ris/ris_estimator.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "sampling/warps.h"
+#include "techniques/ris/reservoir.h"
+
+namespace rr::ris {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsBetween(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+// What reading the clock adds to a timed block: the median gap between consecutive reads,
+// measured once. The pilot's blocks are short (a few candidates, a couple of shadow rays), so
+// it is subtracted from each.
+double clockReadSeconds() {
+    static const double seconds = [] {
+        std::array<double, 255> gaps;
+        for (double& gap : gaps) {
+            const Clock::time_point a = Clock::now();
+            gap = secondsBetween(a, Clock::now());
+        }
+        std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+        return gaps[gaps.size() / 2];
+    }();
+    return seconds;
+}
+
+// The time of a block that ran from `a` to `b`, less the clock read.
+double blockSeconds(Clock::time_point a, Clock::time_point b) {
+    return std::max(0.0, secondsBetween(a, b) - clockReadSeconds());
+}
+
+uint32_t ceilCount(double x) {
+    return static_cast<uint32_t>(std::ceil(x));
+}
+
+// An integer count as it is; a fractional one rounded randomly by draw `repeat` of the
+// vertex's ResampleCount decision (0: M, 1: N).
+uint32_t countAt(const ShadingPoint& point, double x, uint32_t repeat) {
+    if (x == std::floor(x)) return static_cast<uint32_t>(x);
+    return roundRandomly(x, point.decide1D(Decision::ResampleCount, repeat, 2));
+}
+
+// The pilot's sample shape: this many samples of this many candidates per shading point, a
+// fraction of one shading point's work at the paper's budget (20 light samples), so that the
+// pilot's few thousand primary rays stay cheap against the render.
+constexpr uint32_t kProbeSamples = 2;
+constexpr uint32_t kProbeCandidates = 4;
+
+}  // namespace
+
+const char* sourceName(CandidateSource source) {
+    switch (source) {
+        case CandidateSource::Light:
+            return "light";
+        case CandidateSource::UniformHemisphere:
+            return "uniform_hemisphere";
+        case CandidateSource::CosineHemisphere:
+            return "cosine_hemisphere";
+        case CandidateSource::Bsdf:
+            return "bsdf";
+    }
+    return "?";
+}
+
+CostTally& CostTally::operator+=(const CostTally& o) {
+    candidateSeconds += o.candidateSeconds;
+    finishSeconds += o.finishSeconds;
+    candidates += o.candidates;
+    finishes += o.finishes;
+    return *this;
+}
+
+CandidateCosts CostTally::costs() const {
+    return {candidates ? candidateSeconds / double(candidates) : 0,
+            finishes ? finishSeconds / double(finishes) : 0};
+}
+
+RisEstimator::RisEstimator(CandidateSource source, CandidateCounts counts,
+                           CandidateCounts maxCounts)
+    : source_(source), counts_(counts), maxCounts_(maxCounts) {}
+
+nlohmann::json RisEstimator::parameters() const {
+    return {{"type", name()},
+            {"source", sourceName(source_)},
+            {"candidates", counts_.m},
+            {"samples", counts_.n}};
+}
+
+uint32_t RisEstimator::lightSamples() const {
+    return ceilCount(maxCounts_.n);
+}
+
+uint32_t RisEstimator::decisionRepeats() const {
+    return ceilCount(maxCounts_.n) * ceilCount(maxCounts_.m);
+}
+
+bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
+                                 Candidate* c) const {
+    if (source_ == CandidateSource::Light) {
+        const Light* light;
+        if (!point.sampleLight(repeat, repeats, &c->light, &c->pdf, &light)) return false;
+        c->direction = c->light.direction;
+        c->infinite = light->isInfinite();
+        c->scattering = point.scattering(c->direction);
+        c->target = (c->scattering * c->light.radiance).luminance();
+        return true;
+    }
+    const Vec2 u = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+    const Frame* frame = point.frame();
+    if (source_ == CandidateSource::Bsdf) {
+        const float uLobe = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+        if (!point.sampleScattering(uLobe, u, &c->direction, &c->pdf)) return false;
+    } else if (!frame) {  // a point in a medium: the whole sphere
+        c->direction = squareToUniformSphere(u);
+        c->pdf = uniformSpherePdf();
+    } else {
+        const bool uniform = source_ == CandidateSource::UniformHemisphere;
+        const Vec3 local = uniform ? squareToUniformHemisphere(u) : squareToCosineHemisphere(u);
+        c->pdf = uniform ? uniformHemispherePdf(local) : cosineHemispherePdf(local);
+        if (!(c->pdf > 0)) return false;
+        c->direction = frame->toWorld(local);
+    }
+    c->scattering = point.scattering(c->direction);
+    c->target = c->scattering.luminance();
+    return true;
+}
+
+Rgb RisEstimator::finish(ShadingPoint& point, const Candidate& c, float density) const {
+    if (source_ == CandidateSource::Light) {
+        float survival;
+        const Rgb tr = point.visibility(c.light, c.infinite, &survival);
+        if (tr.isBlack()) return Rgb(0.0f);
+        return point.contribution(c.scattering, c.light.radiance, tr, 1.0f, density);
+    }
+    const Rgb le = point.incidentEmission(c.direction);
+    if (le.isBlack()) return Rgb(0.0f);
+    return point.contribution(c.scattering, le, Rgb(1.0f), 1.0f, density);
+}
+
+void RisEstimator::estimate(ShadingPoint& point, const CandidateCounts& counts) const {
+    const uint32_t mMax = ceilCount(counts.m), nMax = ceilCount(counts.n);
+    const uint32_t repeats = mMax * nMax;
+    const uint32_t m = countAt(point, counts.m, 0), n = countAt(point, counts.n, 1);
+    for (uint32_t i = 0; i < n; ++i) {
+        auto draw = [&](uint32_t j, Candidate* c) {
+            return drawCandidate(point, i * mMax + j, repeats, c);
+        };
+        auto select = [&](uint32_t j) {
+            return point.decide1D(Decision::ResampleSelect, i * mMax + j, repeats);
+        };
+        Candidate y;
+        float density;
+        if (!resample(m, draw, select, &y, &density)) continue;
+        // Eq. (1)'s 1/N joins the density.
+        const Rgb contribution = finish(point, y, density * static_cast<float>(n));
+        if (!contribution.isBlack()) point.add(contribution);
+    }
+}
+
+void RisEstimator::measureCosts(ShadingPoint& point, CostTally* tally) const {
+    constexpr uint32_t repeats = kProbeSamples * kProbeCandidates;
+    WeightedReservoir<Candidate> reservoirs[kProbeSamples];
+    const Clock::time_point start = Clock::now();
+    for (uint32_t i = 0; i < kProbeSamples; ++i)
+        for (uint32_t j = 0; j < kProbeCandidates; ++j) {
+            const uint32_t repeat = i * kProbeCandidates + j;
+            Candidate c;
+            if (!drawCandidate(point, repeat, repeats, &c)) continue;
+            reservoirs[i].offer(c, c.target / c.pdf,
+                                point.decide1D(Decision::ResampleSelect, repeat, repeats));
+        }
+    const Clock::time_point drawn = Clock::now();
+    uint32_t finished = 0;
+    for (const auto& reservoir : reservoirs) {
+        if (reservoir.empty()) continue;
+        finish(point, reservoir.kept(), 1.0f);
+        ++finished;
+    }
+    const Clock::time_point end = Clock::now();
+    tally->candidateSeconds += blockSeconds(start, drawn);
+    tally->candidates += repeats;
+    if (finished == 0) return;
+    tally->finishSeconds += blockSeconds(drawn, end);
+    tally->finishes += finished;
+}
+
+void RisEstimator::addVarianceTerms(ShadingPoint& point, uint32_t samples,
+                                    VarianceTerms* terms) const {
+    for (uint32_t k = 0; k < samples; ++k) {
+        Candidate c;
+        if (!drawCandidate(point, k, samples, &c)) {
+            terms->add(Rgb(0.0f), 0, 1);  // no sample: the estimate is 0
+            continue;
+        }
+        const Rgb f = c.target > 0 ? finish(point, c, 1.0f) : Rgb(0.0f);
+        terms->add(f, c.target, c.pdf);
+    }
+}
+
+}  // namespace rr::ris

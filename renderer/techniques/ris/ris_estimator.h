@@ -1,0 +1,91 @@
+// Resampled importance sampling of direct light (Talbot, Cline & Egbert 2005), a direct-lighting
+// estimator (integrators/direct_lighting_estimator.h) usable by `direct`, at every vertex of
+// `path_mis`, and by the `ris` integrator (ris_integrator.h), which also chooses M and N.
+//
+// Per shading point, N samples; each draws M fresh candidates X_j from the source p, keeps one,
+// Y, with probability w_j / Σw where w_j = ĝ(X_j)/p(X_j) (a streaming reservoir: the
+// candidates are never stored), and only then evaluates the rest of the integrand, V: the shadow
+// ray. Eq. (1): Î = (1/N) Σ_i f(Y_i)/ĝ(Y_i) · (1/M) Σ_j w_ij.
+//  - source `light` (§5.1): a candidate is a light and a point on it from the scene's light
+//    sampling, p = P(light)·p(ω) per solid angle; ĝ = luminance(Fs·|cos θ|·Le), the unoccluded
+//    integrand (G's other factors are in p's change of measure); f adds visibility.
+//  - sources `uniform_hemisphere`, `cosine_hemisphere` (about the shading normal) and `bsdf`
+//    (§5.2): a candidate is a direction; ĝ = luminance(Fs·|cos θ|); f adds the emission a ray in
+//    that direction finds. The hemispheres cover reflection only: transmissive materials need
+//    `bsdf`. Surfaces in scenes without media only.
+// Fractional M and N are rounded randomly per shading point (the ResampleCount decision), which
+// keeps the estimate unbiased. With M = 1 the estimator is light sampling exactly: the same
+// decisions and the same arithmetic as `light` with N light samples.
+#pragma once
+
+#include <cstdint>
+
+#include "integrators/direct_lighting_estimator.h"
+#include "techniques/ris/candidate_counts.h"
+
+namespace rr::ris {
+
+enum class CandidateSource : uint8_t { Light, UniformHemisphere, CosineHemisphere, Bsdf };
+
+const char* sourceName(CandidateSource source);
+
+// A candidate: its direction, what ĝ and p say of it, and what finishing it needs.
+struct Candidate {
+    Vec3 direction;
+    LightSample light;  // source `light`: the point on the light
+    bool infinite = false;
+    Rgb scattering;    // Fs·|cos θ| at a surface, the phase function in a medium
+    float pdf = 0;     // p, per solid angle
+    float target = 0;  // ĝ
+};
+
+// What the pilot of §5.1 measured: the seconds spent drawing candidates and finishing chosen
+// samples, and how many of each.
+struct CostTally {
+    double candidateSeconds = 0, finishSeconds = 0;
+    uint64_t candidates = 0, finishes = 0;
+    CostTally& operator+=(const CostTally& o);
+    CandidateCosts costs() const;
+};
+
+class RisEstimator final : public DirectLightingEstimator {
+  public:
+    // `maxCounts`: the largest M and N the estimate will be asked for (sets the decisions'
+    // repeat counts, which structured samplers stratify together).
+    RisEstimator(CandidateSource source, CandidateCounts counts, CandidateCounts maxCounts);
+    RisEstimator(CandidateSource source, CandidateCounts counts)
+        : RisEstimator(source, counts, counts) {}
+
+    std::string name() const override { return "ris"; }
+    nlohmann::json parameters() const override;
+    uint32_t lightSamples() const override;
+    // The estimate covers every light a non-specular direction can find.
+    FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
+    uint32_t decisionRepeats() const override;
+    bool worksInMedia() const override { return source_ == CandidateSource::Light; }
+
+    void estimate(ShadingPoint& point) const override { estimate(point, counts_); }
+    // With counts of the caller's (per pixel, as the `ris` integrator's optimal M and N), each
+    // at most the maximum counts.
+    void estimate(ShadingPoint& point, const CandidateCounts& counts) const;
+
+    // The pilot: times both stages at `point` over a few samples (all their candidates first,
+    // then the chosen ones finished, each stage timed as one block).
+    void measureCosts(ShadingPoint& point, CostTally* tally) const;
+    // Adds `samples` candidates X ~ p, each finished (f with its shadow ray), to eq. (2)'s terms.
+    void addVarianceTerms(ShadingPoint& point, uint32_t samples, VarianceTerms* terms) const;
+
+    CandidateSource source() const { return source_; }
+    const CandidateCounts& counts() const { return counts_; }
+
+  private:
+    bool drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
+                       Candidate* candidate) const;
+    // The candidate's contribution f·(1/density): visibility (or the emission found) decided.
+    Rgb finish(ShadingPoint& point, const Candidate& candidate, float density) const;
+
+    CandidateSource source_;
+    CandidateCounts counts_, maxCounts_;
+};
+
+}  // namespace rr::ris
