@@ -18,21 +18,16 @@ class WeightedReservoir {
         ++offered_;
         if (!(w > 0)) return;
         weightSum_ += w;
-        if (u * weightSum_ < w) {
-            kept_ = candidate;
-            keptWeight_ = w;
-        }
+        if (u * weightSum_ < w) kept_ = candidate;
     }
 
     bool empty() const { return !(weightSum_ > 0); }
     const Candidate& kept() const { return kept_; }
-    float keptWeight() const { return keptWeight_; }
     float weightSum() const { return weightSum_; }
     uint32_t offered() const { return offered_; }
 
   private:
     Candidate kept_{};
-    float keptWeight_ = 0;
     float weightSum_ = 0;
     uint32_t offered_ = 0;
 };
