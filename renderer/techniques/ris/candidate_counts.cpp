@@ -28,38 +28,38 @@ void VarianceTerms::add(const Rgb& f, float target, float pdf) {
     gOverP += double(target) / pdf;
 }
 
+VarianceTerms::Terms VarianceTerms::terms() const {
+    Terms t;
+    const double n = count_;
+    for (int c = 0; c < 3; ++c) {
+        t.e1[c] = std::pow(fOverP[c] / n, 2);
+        t.e2[c] = fSquaredOverGP[c] / n * (gOverP / n);
+        t.e3[c] = fSquaredOverPSquared[c] / n;
+    }
+    return t;
+}
+
 Rgb VarianceTerms::e1() const {
-    double e[3];
-    for (int c = 0; c < 3; ++c)
-        e[c] = std::pow(fOverP[c] / count_, 2);
-    return fromChannels(e);
+    return fromChannels(terms().e1);
 }
 
 Rgb VarianceTerms::e2() const {
-    double e[3];
-    for (int c = 0; c < 3; ++c)
-        e[c] = fSquaredOverGP[c] / count_ * (gOverP / count_);
-    return fromChannels(e);
+    return fromChannels(terms().e2);
 }
 
 Rgb VarianceTerms::e3() const {
-    double e[3];
-    for (int c = 0; c < 3; ++c)
-        e[c] = fSquaredOverPSquared[c] / count_;
-    return fromChannels(e);
+    return fromChannels(terms().e3);
 }
 
 double VarianceTerms::sourceExcess() const {
-    double d[3];
-    for (int c = 0; c < 3; ++c)
-        d[c] = fSquaredOverPSquared[c] / count_ - fSquaredOverGP[c] / count_ * (gOverP / count_);
+    const Terms t = terms();
+    const double d[3] = {t.e3[0] - t.e2[0], t.e3[1] - t.e2[1], t.e3[2] - t.e2[2]};
     return length(d);
 }
 
 double VarianceTerms::targetExcess() const {
-    double d[3];
-    for (int c = 0; c < 3; ++c)
-        d[c] = fSquaredOverGP[c] / count_ * (gOverP / count_) - std::pow(fOverP[c] / count_, 2);
+    const Terms t = terms();
+    const double d[3] = {t.e2[0] - t.e1[0], t.e2[1] - t.e1[1], t.e2[2] - t.e1[2]};
     return length(d);
 }
 

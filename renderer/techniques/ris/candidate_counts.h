@@ -37,6 +37,11 @@ class VarianceTerms {
     double targetExcess() const;
 
   private:
+    struct Terms {
+        double e1[3], e2[3], e3[3];
+    };
+    Terms terms() const;  // per channel, in double precision
+
     uint32_t count_ = 0;
     double fOverP[3] = {0, 0, 0};
     double fSquaredOverGP[3] = {0, 0, 0};
