@@ -67,10 +67,10 @@ class SurfaceVertex final : public ShadingPoint {
           medium_(medium),
           scatterSamples_(scatterSamples) {}
 
-    bool sampleLight(uint32_t repeat, uint32_t count, LightSample* ls, float* pdf,
+    bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* ls, float* pdf,
                      const Light** light) override {
-        return out_.guide.sampleLight(out_.vertex, repeat, count, hit_.position, hit_.time, ls, pdf,
-                                      light);
+        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, hit_.position, hit_.time,
+                                      ls, pdf, light);
     }
     Rgb scattering(const Vec3& wi) const override {
         return material_.eval(ctx_, wo_, frame_.toLocal(wi));
@@ -140,9 +140,10 @@ class MediumVertex final : public ShadingPoint {
                  const Medium& medium)
         : out_(out), position_(position), time_(time), wo_(wo), medium_(medium) {}
 
-    bool sampleLight(uint32_t repeat, uint32_t count, LightSample* ls, float* pdf,
+    bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* ls, float* pdf,
                      const Light** light) override {
-        return out_.guide.sampleLight(out_.vertex, repeat, count, position_, time_, ls, pdf, light);
+        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, position_, time_, ls, pdf,
+                                      light);
     }
     Rgb scattering(const Vec3& wi) const override {
         const float p = medium_.phase().eval(wo_, wi);

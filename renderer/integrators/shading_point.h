@@ -19,10 +19,11 @@ class ShadingPoint {
     virtual ~ShadingPoint() = default;
 
     // Draw `repeat` of `count` of a light and a point on it (the light-selection and
-    // light-point decisions of this vertex): the sample, its density (selection × point, per
-    // solid angle) and the light. False when no light was sampled.
-    virtual bool sampleLight(uint32_t repeat, uint32_t count, LightSample* sample, float* pdf,
-                             const Light** light) = 0;
+    // light-point decisions of this vertex), from the light's own sampler or its stand-in
+    // (`draw`): the sample, its density (selection × point, per solid angle) and the light.
+    // False when no light was sampled.
+    virtual bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* sample,
+                             float* pdf, const Light** light) = 0;
     // f(wo, wi)·|cos θi| at a surface; the phase function (grey) in a medium.
     virtual Rgb scattering(const Vec3& wi) const = 0;
     // The density with which this vertex's own scattering sample (BSDF or phase function,

@@ -37,16 +37,17 @@ class StandardSampling {
     }
     // Draw `repeat` of `count` of next-event estimation's light and the point on it, with the
     // density of the pair.
-    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
-                     float time, LightSample* ls, float* pdf, const Light** chosen) {
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
+                     const Vec3& reference, float time, LightSample* ls, float* pdf,
+                     const Light** chosen) {
         float selectPmf;
         const Light* light = scene_.lightSelector().select(
             sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}), reference,
             &selectPmf);
-        if (!light ||
-            !light->sample(reference,
-                           sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count}),
-                           time, ls))
+        if (!light) return false;
+        const Vec2 u = sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count});
+        if (!(draw == LightDraw::Proxy ? light->sampleProxy(reference, u, time, ls)
+                                       : light->sample(reference, u, time, ls)))
             return false;
         *pdf = selectPmf * ls->pdf;
         *chosen = light;
@@ -104,7 +105,9 @@ concept PathGuide = requires(G& g, const G& cg, int pixel, uint32_t index, float
                              const PhaseFunction& phase, Vec3* wi) {
     { g.cameraRay(pixel, pixel, out) } -> std::same_as<Ray>;
     { g.flightCoordinate(index, radiance, out) } -> std::same_as<float>;
-    { g.sampleLight(index, index, index, v, 0.0f, ls, out, chosen) } -> std::same_as<bool>;
+    {
+        g.sampleLight(index, index, index, LightDraw::Exact, v, 0.0f, ls, out, chosen)
+        } -> std::same_as<bool>;
     g.lightContribution(index, radiance);
     { cg.lightPdf(index, areaLight, v, hit) } -> std::same_as<float>;
     { cg.lightPdf(index, light, v, v) } -> std::same_as<float>;

@@ -19,13 +19,14 @@ Distribution2D::Distribution2D(std::span<const float> weights, int width, int he
     rows_ = Distribution1D(rowSums);
 }
 
-Vec2 Distribution2D::sample(Vec2 u, float* pdf) const {
+Vec2 Distribution2D::sample(Vec2 u, float* pdf, int* cell) const {
     float rowPmf, columnPmf, v, s;
     const int row = rows_.sample(u.y, &rowPmf, &v);
     const int col = columns_[size_t(row)].sample(u.x, &columnPmf, &s);
     // The remapped u lies in [0, 1): the point stays inside its cell, so pdf() of the
     // returned point finds the same cell (up to the rounding of the division below).
     *pdf = rowPmf * columnPmf * float(width_) * float(height_);
+    if (cell) *cell = row * width_ + col;
     return {(float(col) + s) / float(width_), (float(row) + v) / float(height_)};
 }
 

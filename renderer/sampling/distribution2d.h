@@ -19,8 +19,9 @@ class Distribution2D {
     Distribution2D(std::span<const float> weights, int width, int height);
 
     // A point of [0,1)² with density *pdf (per unit area of the square): the cell is chosen
-    // with probability weight/sum, the point uniformly inside it.
-    Vec2 sample(Vec2 u, float* pdf) const;
+    // with probability weight/sum (its row-major index in *cell, when asked), the point
+    // uniformly inside it.
+    Vec2 sample(Vec2 u, float* pdf, int* cell = nullptr) const;
     // Density at a point of [0,1]² (points on the upper edges belong to the last cells).
     float pdf(Vec2 p) const;
     // The inverse of sample(): the u that sample() maps to the point `p` of a cell of non-zero

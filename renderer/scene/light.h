@@ -10,11 +10,17 @@
 //    weighs them with directionPdf().
 #pragma once
 
+#include <cstdint>
+
 #include "math/rgb.h"
 #include "math/vector.h"
 #include "scene/surface_hit.h"
 
 namespace rr {
+
+// Which of a light's samplers to draw from: its own (sample()), or the cheaper stand-in that
+// estimators drawing many candidates and finishing few use (sampleProxy(), RIS).
+enum class LightDraw : uint8_t { Exact, Proxy };
 
 struct LightSample {
     Vec3 direction;        // unit, from the reference point towards the light
@@ -31,6 +37,16 @@ class Light {
     virtual ~Light() = default;
 
     virtual bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const = 0;
+    // A cheaper stand-in for sample(), for estimators that draw many candidates and finish
+    // few (RIS's ĝ needs only an approximation of the integrand): a sample from a density that
+    // may differ from sample()'s (`pdf` is the stand-in's own, exact) whose `radiance` may be
+    // approximate; exactRadiance() gives the light's true radiance for it. By default sample()
+    // itself; an environment map draws from blocks of texels (EnvironmentMap).
+    virtual bool sampleProxy(const Vec3& reference, Vec2 u, float time, LightSample* out) const {
+        return sample(reference, u, time, out);
+    }
+    // The radiance that arrives along a sample of sampleProxy() (or of sample(): its own).
+    virtual Rgb exactRadiance(const LightSample& s) const { return s.radiance; }
     // Solid-angle density with which sample() from `reference` yields the point `hit` on this
     // light; zero for delta lights.
     virtual float pdf(const Vec3& reference, const SurfaceHit& hit) const = 0;

@@ -56,6 +56,13 @@ TEST(RisAllocations, CandidatesFromLightsAllocateNothing) {
               0u);
 }
 
+TEST(RisAllocations, CandidatesFromTheLightsStandInsAllocateNothing) {
+    EXPECT_EQ(allocationsWhileEstimating(
+                  "ris_fig4_dragon_env.json",
+                  R"({"type":"ris","mode":"fixed","source":"light_proxy","candidates":32})"),
+              0u);
+}
+
 TEST(RisAllocations, CandidatesFromDirectionsAllocateNothing) {
     EXPECT_EQ(allocationsWhileEstimating(
                   "ris_fig5_cook_torrance_sphere.json",

@@ -37,6 +37,9 @@ constexpr const char* kPathMis = R"({"type":"path_mis"})";
 const Case kCases[] = {
     {"dragon_env_light", "ris_fig4_dragon_env.json",
      R"({"type":"ris","mode":"fixed","candidates":3.5,"samples":1.5})", kDirectMis, 4, 64, 2048},
+    {"dragon_env_light_proxy", "ris_fig4_dragon_env.json",
+     R"({"type":"ris","mode":"fixed","source":"light_proxy","candidates":3.5,"samples":1.5})",
+     kDirectMis, 4, 64, 2048},
     {"dragon_no_env_light", "ris_fig4_dragon_no_env.json",
      R"({"type":"ris","mode":"fixed","candidates":3.5,"samples":1.5})", kDirectMis, 4, 64, 2048},
     {"dragon_env_robust", "ris_fig4_dragon_env.json",

@@ -194,7 +194,7 @@ TEST(TaisGuide, LightSelectionMixesTheMapWithTheSelector) {
         LightSample ls;
         float pdf;
         const Light* light;
-        ASSERT_TRUE(guide.sampleLight(0, 0, 1, reference, 0, &ls, &pdf, &light));
+        ASSERT_TRUE(guide.sampleLight(0, 0, 1, LightDraw::Exact, reference, 0, &ls, &pdf, &light));
         observed[size_t(light->index())] += 1;
         // Point lights: the pair's density is the selection probability alone.
         const float claimed =

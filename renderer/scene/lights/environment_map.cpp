@@ -1,6 +1,8 @@
 #include "scene/lights/environment_map.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace rr {
@@ -22,13 +24,24 @@ float meanJacobian(const EnvLayout& layout, int col, int row, int width, int hei
     return sum / (kSub * kSub);
 }
 
+// The side of the stand-in's blocks: the largest common divisor of the map's sides that leaves
+// at least 64 blocks across the shorter one (100 × 100 blocks of 10 × 10 texels for a
+// 1000 × 1000 probe, 128 × 64 of 8 × 8 for a 1024 × 512 lat-long map): tables of ~0.3 MB that
+// stay in a core's cache. Maps whose sides share no such divisor keep their texels.
+int proxyBlockSide(int width, int height) {
+    const int common = std::gcd(width, height), limit = std::min(width, height) / 64;
+    for (int side = std::min(common, limit); side > 1; --side)
+        if (common % side == 0) return side;
+    return 1;
+}
+
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout, const Rgb& scale,
                                const Frame& toWorld)
     : image_(std::move(image)), layout_(std::move(layout)), toWorld_(toWorld) {
     const int width = image_.width, height = image_.height;
-    std::vector<float> weights(image_.pixels.size());
+    std::vector<float> weights(image_.pixels.size()), jacobians(image_.pixels.size());
     double integral[3] = {0, 0, 0};
     const double texelArea = 1.0 / (double(width) * height);
     for (int row = 0; row < height; ++row)
@@ -45,12 +58,43 @@ EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout
             }
             p = Rgb(std::max(p.r, 0.0f), std::max(p.g, 0.0f), std::max(p.b, 0.0f)) * scale;
             const float jacobian = meanJacobian(*layout_, col, row, width, height);
+            jacobians[i] = jacobian;
             weights[i] = p.luminance() * jacobian;
             for (int c = 0; c < 3; ++c)
                 integral[c] += double(p[c]) * jacobian * texelArea;
         }
     distribution_ = Distribution2D(weights, width, height);
     radianceIntegral_ = Rgb(float(integral[0]), float(integral[1]), float(integral[2]));
+    buildProxy(weights, jacobians);
+}
+
+void EnvironmentMap::buildProxy(const std::vector<float>& weights,
+                                const std::vector<float>& jacobians) {
+    const int block = proxyBlockSide(image_.width, image_.height);
+    if (block == 1) return;
+    const int columns = image_.width / block, rows = image_.height / block;
+    std::vector<float> cellWeights(size_t(columns) * rows);
+    proxy_.radiance.assign(cellWeights.size(), Rgb(0.0f));
+    for (int row = 0; row < rows; ++row)
+        for (int col = 0; col < columns; ++col) {
+            double weight = 0, solidAngle = 0, radiance[3] = {0, 0, 0};
+            for (int y = row * block; y < (row + 1) * block; ++y)
+                for (int x = col * block; x < (col + 1) * block; ++x) {
+                    const size_t i = size_t(y) * image_.width + x;
+                    weight += weights[i];
+                    solidAngle += jacobians[i];
+                    for (int c = 0; c < 3; ++c)
+                        radiance[c] += double(image_.pixels[i][c]) * jacobians[i];
+                }
+            const size_t cell = size_t(row) * columns + col;
+            cellWeights[cell] = float(weight);
+            if (solidAngle > 0)
+                proxy_.radiance[cell] =
+                    Rgb(float(radiance[0] / solidAngle), float(radiance[1] / solidAngle),
+                        float(radiance[2] / solidAngle));
+        }
+    proxy_.distribution = Distribution2D(cellWeights, columns, rows);
+    proxy_.block = block;
 }
 
 int EnvironmentMap::texelIndex(Vec2 st) const {
@@ -79,6 +123,28 @@ bool EnvironmentMap::sample(const Vec3& reference, Vec2 u, float, LightSample* o
     out->pdf = directionPdf(out->direction);
     out->isDelta = false;
     return out->pdf > 0 && !out->radiance.isBlack();
+}
+
+bool EnvironmentMap::sampleProxy(const Vec3& reference, Vec2 u, float time,
+                                 LightSample* out) const {
+    if (proxy_.block == 1) return sample(reference, u, time, out);
+    float imagePdf;
+    int cell;
+    const Vec2 st = proxy_.distribution.sample(u, &imagePdf, &cell);
+    Vec3 local;
+    float jacobian;
+    if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian) || !(jacobian > 0))
+        return false;
+    out->direction = normalize(toWorld_.toWorld(local));
+    out->position = reference + out->direction * (4.0f * radius_);
+    out->normal = Vec3(0.0f);
+    out->errorScale = 0;
+    out->radiance = proxy_.radiance[size_t(cell)];
+    // The density of the point's direction itself (the layout's Jacobian there, not a texel's
+    // mean): the stand-in's pdf is exact, only its radiance approximates.
+    out->pdf = imagePdf / jacobian;
+    out->isDelta = false;
+    return std::isfinite(out->pdf) && !out->radiance.isBlack();
 }
 
 Rgb EnvironmentMap::escapedRadiance(const Vec3& w) const {

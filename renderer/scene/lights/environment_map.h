@@ -10,9 +10,17 @@
 // mean of dω/(ds dt) over it; Distribution2D), a point uniformly inside it, and the direction
 // there; the solid-angle density is p(s, t) / (dω/(ds dt)) (the change of variables from image
 // to sphere).
+//
+// Resampling's stand-in (sampleProxy): the same map coarsened to blocks of texels, so that a
+// candidate reads two small tables that stay in cache instead of a megabyte-scale texel table
+// and the texel (about 400 ns per candidate on Galileo's 1000 × 1000 probe, against a shadow
+// ray's 150). A block is chosen with probability ∝ its texels' weights, a point uniformly in it;
+// its radiance is the block's solid-angle-weighted mean. Any block holding a texel of non-zero
+// weight has non-zero probability and radiance, so RIS stays unbiased with it.
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "io/rgb_image_io.h"
 #include "math/frame.h"
@@ -31,6 +39,8 @@ class EnvironmentMap final : public Light {
                    const Frame& toWorld);
 
     bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    bool sampleProxy(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    Rgb exactRadiance(const LightSample& s) const override { return escapedRadiance(s.direction); }
     float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
     // Flux through the scene's bounding sphere: π r² ∫ L dω (its cross-section times the
     // radiance integrated over directions, as for ConstantEnvironment).
@@ -52,15 +62,26 @@ class EnvironmentMap final : public Light {
     const EnvLayout& layout() const { return *layout_; }
     // ∫ L dω over the sphere: Σ texel radiance × texel solid angle.
     const Rgb& radianceIntegral() const { return radianceIntegral_; }
+    // The side of sampleProxy()'s blocks, in texels (1: the stand-in is sample() itself).
+    int proxyBlock() const { return proxy_.block; }
 
   private:
+    // sampleProxy()'s coarsened map: block × block texels per cell.
+    struct Proxy {
+        int block = 1;
+        Distribution2D distribution;
+        std::vector<Rgb> radiance;  // per cell: Σ L·dω / Σ dω over its texels
+    };
+
     int texelIndex(Vec2 st) const;
+    void buildProxy(const std::vector<float>& weights, const std::vector<float>& jacobians);
 
     RgbImage image_;  // scaled and masked
     std::unique_ptr<EnvLayout> layout_;
     Frame toWorld_;
     Distribution2D distribution_;
     Rgb radianceIntegral_;
+    Proxy proxy_;
     float radius_ = 1;
 };
 

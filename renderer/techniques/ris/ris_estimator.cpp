@@ -62,6 +62,8 @@ const char* sourceName(CandidateSource source) {
     switch (source) {
         case CandidateSource::Light:
             return "light";
+        case CandidateSource::LightProxy:
+            return "light_proxy";
         case CandidateSource::UniformHemisphere:
             return "uniform_hemisphere";
         case CandidateSource::CosineHemisphere:
@@ -106,11 +108,12 @@ uint32_t RisEstimator::decisionRepeats() const {
 
 bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                                  Candidate* c) const {
-    if (source_ == CandidateSource::Light) {
-        const Light* light;
-        if (!point.sampleLight(repeat, repeats, &c->light, &c->pdf, &light)) return false;
+    if (fromLights()) {
+        const LightDraw draw =
+            source_ == CandidateSource::LightProxy ? LightDraw::Proxy : LightDraw::Exact;
+        if (!point.sampleLight(repeat, repeats, draw, &c->light, &c->pdf, &c->emitter))
+            return false;
         c->direction = c->light.direction;
-        c->infinite = light->isInfinite();
         c->scattering = point.scattering(c->direction);
         c->target = (c->scattering * c->light.radiance).luminance();
         return true;
@@ -136,11 +139,13 @@ bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t 
 }
 
 Rgb RisEstimator::finish(ShadingPoint& point, const Candidate& c, float density) const {
-    if (source_ == CandidateSource::Light) {
+    if (fromLights()) {
         float survival;
-        const Rgb tr = point.visibility(c.light, c.infinite, &survival);
+        const Rgb tr = point.visibility(c.light, c.emitter->isInfinite(), &survival);
         if (tr.isBlack()) return Rgb(0.0f);
-        return point.contribution(c.scattering, c.light.radiance, tr, 1.0f, density);
+        const Rgb le = source_ == CandidateSource::LightProxy ? c.emitter->exactRadiance(c.light)
+                                                              : c.light.radiance;
+        return point.contribution(c.scattering, le, tr, 1.0f, density);
     }
     const Rgb le = point.incidentEmission(c.direction);
     if (le.isBlack()) return Rgb(0.0f);

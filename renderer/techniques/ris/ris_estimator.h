@@ -9,6 +9,10 @@
 //  - source `light` (§5.1): a candidate is a light and a point on it from the scene's light
 //    sampling, p = P(light)·p(ω) per solid angle; ĝ = luminance(Fs·|cos θ|·Le), the unoccluded
 //    integrand (G's other factors are in p's change of measure); f adds visibility.
+//  - source `light_proxy`: the same, but candidates come from each light's cheaper stand-in
+//    (Light::sampleProxy: an environment map draws blocks of texels and ĝ uses the block's mean
+//    radiance); the chosen sample is finished with the light's exact radiance. p is still
+//    exact, ĝ only approximates, which eq. (1) allows.
 //  - sources `uniform_hemisphere`, `cosine_hemisphere` (about the shading normal) and `bsdf`
 //    (§5.2): a candidate is a direction; ĝ = luminance(Fs·|cos θ|); f adds the emission a ray in
 //    that direction finds. The hemispheres cover reflection only: transmissive materials need
@@ -25,15 +29,21 @@
 
 namespace rr::ris {
 
-enum class CandidateSource : uint8_t { Light, UniformHemisphere, CosineHemisphere, Bsdf };
+enum class CandidateSource : uint8_t {
+    Light,
+    LightProxy,
+    UniformHemisphere,
+    CosineHemisphere,
+    Bsdf
+};
 
 const char* sourceName(CandidateSource source);
 
 // A candidate: its direction, what ĝ and p say of it, and what finishing it needs.
 struct Candidate {
     Vec3 direction;
-    LightSample light;  // source `light`: the point on the light
-    bool infinite = false;
+    LightSample light;  // light sources: the point on the light
+    const Light* emitter = nullptr;
     Rgb scattering;    // Fs·|cos θ| at a surface, the phase function in a medium
     float pdf = 0;     // p, per solid angle
     float target = 0;  // ĝ
@@ -62,7 +72,7 @@ class RisEstimator final : public DirectLightingEstimator {
     // The estimate covers every light a non-specular direction can find.
     FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
     uint32_t decisionRepeats() const override;
-    bool worksInMedia() const override { return source_ == CandidateSource::Light; }
+    bool worksInMedia() const override { return fromLights(); }
 
     void estimate(ShadingPoint& point) const override { estimate(point, counts_); }
     // With counts of the caller's (per pixel, as the `ris` integrator's optimal M and N), each
@@ -79,6 +89,9 @@ class RisEstimator final : public DirectLightingEstimator {
     const CandidateCounts& counts() const { return counts_; }
 
   private:
+    bool fromLights() const {
+        return source_ == CandidateSource::Light || source_ == CandidateSource::LightProxy;
+    }
     bool drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                        Candidate* candidate) const;
     // The candidate's contribution f·(1/density): visibility (or the emission found) decided.

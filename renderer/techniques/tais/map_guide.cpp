@@ -72,10 +72,11 @@ float MapGuide::pointOnLightPdf(const Light& light, const Vec3& reference, const
     return maps_.pointOnLight->pdf(u);
 }
 
-bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
-                           float time, LightSample* ls, float* pdf, const Light** chosen) {
+bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
+                           const Vec3& reference, float time, LightSample* ls, float* pdf,
+                           const Light** chosen) {
     if (!guidesLights(vertex))
-        return StandardSampling::sampleLight(vertex, repeat, count, reference, time, ls, pdf,
+        return StandardSampling::sampleLight(vertex, repeat, count, draw, reference, time, ls, pdf,
                                              chosen);
     const LightSelector& selector = scene().lightSelector();
     const float uSelect = sample().get1D({Decision::LightSelect, vertex, repeat, count});
@@ -102,7 +103,10 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, con
         record(MapKind::PointOnLight, 0, uPoint, Rgb(0.0f), true);
     }
     lightRecords_ = (maps_.lightSelection ? 1 : 0) + (warpsPointOn(*light) ? 1 : 0);
-    if (!light->sample(reference, uPoint, time, ls)) return false;
+    // The warp is a density on the coordinates: it composes with either sampler's.
+    if (!(draw == LightDraw::Proxy ? light->sampleProxy(reference, uPoint, time, ls)
+                                   : light->sample(reference, uPoint, time, ls)))
+        return false;
     *pdf = selectPmf * ls->pdf * warp;  // eq. (3) for the point
     *chosen = light;
     return true;

@@ -43,8 +43,9 @@ class MapGuide : public StandardSampling {
     Ray cameraRay(int x, int y, float* weight);
 
     float flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf);
-    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, const Vec3& reference,
-                     float time, LightSample* ls, float* pdf, const Light** chosen);
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
+                     const Vec3& reference, float time, LightSample* ls, float* pdf,
+                     const Light** chosen);
     void lightContribution(uint32_t vertex, const Rgb& contribution);
     float lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
                    const SurfaceHit& hit) const;
