@@ -46,9 +46,7 @@ class StandardSampling {
             &selectPmf);
         if (!light) return false;
         const Vec2 u = sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count});
-        if (!(draw == LightDraw::Proxy ? light->sampleProxy(reference, u, time, ls)
-                                       : light->sample(reference, u, time, ls)))
-            return false;
+        if (!light->draw(draw, reference, u, time, ls)) return false;
         *pdf = selectPmf * ls->pdf;
         *chosen = light;
         return true;

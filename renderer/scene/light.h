@@ -47,6 +47,11 @@ class Light {
     }
     // The radiance that arrives along a sample of sampleProxy() (or of sample(): its own).
     virtual Rgb exactRadiance(const LightSample& s) const { return s.radiance; }
+    // sample() or sampleProxy(), as `how` says.
+    bool draw(LightDraw how, const Vec3& reference, Vec2 u, float time, LightSample* out) const {
+        return how == LightDraw::Proxy ? sampleProxy(reference, u, time, out)
+                                       : sample(reference, u, time, out);
+    }
     // Solid-angle density with which sample() from `reference` yields the point `hit` on this
     // light; zero for delta lights.
     virtual float pdf(const Vec3& reference, const SurfaceHit& hit) const = 0;

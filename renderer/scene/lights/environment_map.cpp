@@ -103,6 +103,16 @@ int EnvironmentMap::texelIndex(Vec2 st) const {
     return row * image_.width + col;
 }
 
+void EnvironmentMap::setDirection(const Vec3& reference, const Vec3& local,
+                                  LightSample* out) const {
+    out->direction = normalize(toWorld_.toWorld(local));
+    // Twice the diameter: outside the bounding sphere from any point inside it.
+    out->position = reference + out->direction * (4.0f * radius_);
+    out->normal = Vec3(0.0f);
+    out->errorScale = 0;
+    out->isDelta = false;
+}
+
 bool EnvironmentMap::sample(const Vec3& reference, Vec2 u, float, LightSample* out) const {
     float imagePdf;
     const Vec2 st = distribution_.sample(u, &imagePdf);
@@ -112,16 +122,11 @@ bool EnvironmentMap::sample(const Vec3& reference, Vec2 u, float, LightSample* o
     // density below is then that of a distribution of total mass slightly below 1, which
     // keeps the estimator unbiased).
     if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian)) return false;
-    out->direction = normalize(toWorld_.toWorld(local));
-    // Twice the diameter: outside the bounding sphere from any point inside it.
-    out->position = reference + out->direction * (4.0f * radius_);
-    out->normal = Vec3(0.0f);
-    out->errorScale = 0;
+    setDirection(reference, local, out);
     // Radiance and density of the direction itself, exactly as escaped rays and MIS see them
     // (the texel is found again from the direction, so the three always agree).
     out->radiance = escapedRadiance(out->direction);
     out->pdf = directionPdf(out->direction);
-    out->isDelta = false;
     return out->pdf > 0 && !out->radiance.isBlack();
 }
 
@@ -135,15 +140,11 @@ bool EnvironmentMap::sampleProxy(const Vec3& reference, Vec2 u, float time,
     float jacobian;
     if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian) || !(jacobian > 0))
         return false;
-    out->direction = normalize(toWorld_.toWorld(local));
-    out->position = reference + out->direction * (4.0f * radius_);
-    out->normal = Vec3(0.0f);
-    out->errorScale = 0;
+    setDirection(reference, local, out);
     out->radiance = proxy_.radiance[size_t(cell)];
     // The density of the point's direction itself (the layout's Jacobian there, not a texel's
     // mean): the stand-in's pdf is exact, only its radiance approximates.
     out->pdf = imagePdf / jacobian;
-    out->isDelta = false;
     return std::isfinite(out->pdf) && !out->radiance.isBlack();
 }
 

@@ -74,6 +74,8 @@ class EnvironmentMap final : public Light {
     };
 
     int texelIndex(Vec2 st) const;
+    // A sample's direction (from the map's frame) and the shadow-ray target far along it.
+    void setDirection(const Vec3& reference, const Vec3& local, LightSample* out) const;
     void buildProxy(const std::vector<float>& weights, const std::vector<float>& jacobians);
 
     RgbImage image_;  // scaled and masked

@@ -104,9 +104,7 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
     }
     lightRecords_ = (maps_.lightSelection ? 1 : 0) + (warpsPointOn(*light) ? 1 : 0);
     // The warp is a density on the coordinates: it composes with either sampler's.
-    if (!(draw == LightDraw::Proxy ? light->sampleProxy(reference, uPoint, time, ls)
-                                   : light->sample(reference, uPoint, time, ls)))
-        return false;
+    if (!light->draw(draw, reference, uPoint, time, ls)) return false;
     *pdf = selectPmf * ls->pdf * warp;  // eq. (3) for the point
     *chosen = light;
     return true;
