@@ -6,6 +6,7 @@ fields (a baseline among the techniques, budgets among a profile's, a crop insid
 budgets in strictly increasing order, and a scene file that exists. Every error is one
 ConfigError naming the JSON pointer of the bad value. The format is documented in
 configs/README.md ("Experiments")."""
+import copy
 import functools
 import hashlib
 import json
@@ -66,6 +67,21 @@ class Technique:
     label: str
     integrator: Integrator
     fixed_spp: bool = False  # renders a fixed spp and cannot honour --time-limit
+    # JSON pointers into the integrator where each spp budget goes (one pixel sample per render)
+    samples_at: list[str] = field(default_factory=list)
+
+    def integrator_for(self, spp: int) -> tuple[Integrator, int]:
+        """The integrator a render of `spp` budget uses, and the pixel samples it takes."""
+        if not self.samples_at:
+            return self.integrator, spp
+        integrator = copy.deepcopy(self.integrator)
+        for pointer in self.samples_at:
+            *parents, last = pointer.split("/")[1:]
+            node = integrator
+            for key in parents:
+                node = node[key]
+            node[last] = spp
+        return integrator, 1
 
 
 @dataclass
@@ -233,7 +249,13 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
         yield from _profile_disagreements(name, doc["profiles"][name])
     if doc["baseline"] not in doc["techniques"]:
         yield "/baseline", "must name one of the techniques"
-    if not any(t.get("fixed_spp", False) for t in doc["techniques"].values()):
+    for name, t in doc["techniques"].items():
+        for i, pointer in enumerate(t.get("samples_at", [])):
+            if not isinstance(_resolve(t["integrator"], pointer), int):
+                yield (json_pointer("techniques", name, "samples_at", i),
+                       f"{pointer} must name an integer the integrator already has")
+    if not any(t.get("fixed_spp", False) or "samples_at" in t
+               for t in doc["techniques"].values()):
         for name in PROFILES:
             if "matched_spp" in doc["profiles"][name]:
                 yield (json_pointer("profiles", name, "matched_spp"),
@@ -243,6 +265,16 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
         yield from _paper_disagreements(doc, pointer, entry)
     if "thresholds" in doc:
         yield from _threshold_disagreements(doc)
+
+
+def _resolve(document: Any, pointer: str) -> Any:
+    """The value at a JSON pointer (no ~ escapes), or None."""
+    node = document
+    for key in pointer.split("/")[1:]:
+        if not isinstance(node, dict) or key not in node:
+            return None
+        node = node[key]
+    return node
 
 
 def _scene(doc: dict[str, Any]) -> Path:
@@ -325,7 +357,8 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         scene=_scene(doc),
         overrides=doc.get("set", {}),
         techniques={name: Technique(name, t.get("label", name), t["integrator"],
-                                    t.get("fixed_spp", False))
+                                    t.get("fixed_spp", False) or "samples_at" in t,
+                                    t.get("samples_at", []))
                     for name, t in doc["techniques"].items()},
         baseline=doc["baseline"],
         metrics=doc["metrics"],

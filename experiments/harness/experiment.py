@@ -129,15 +129,18 @@ def execute(exp: Experiment, profile: Profile, runs: list[Run], out_dir: Path,
         def work() -> RunRecord:
             out = out_dir / run.file_name()
             out.parent.mkdir(parents=True, exist_ok=True)
-            integrator = exp.techniques[run.technique].integrator
+            technique = exp.techniques[run.technique]
             if run.kind == SPP:
-                renders.render(exp, profile, integrator, out, run.seed, spp=int(run.budget),
+                integrator, spp = technique.integrator_for(int(run.budget))
+                renders.render(exp, profile, integrator, out, run.seed, spp=spp,
                                threads=profile.threads_per_job)
             else:
-                renders.render(exp, profile, integrator, out, run.seed, seconds=run.budget,
-                               threads=profile.threads_per_job)
+                renders.render(exp, profile, technique.integrator, out, run.seed,
+                               seconds=run.budget, threads=profile.threads_per_job)
             m = renders.compare(out, reference_file, exp.relmse_reject)
-            return RunRecord(run.technique, run.kind, run.budget, run.seed, spp=m.spp,
+            # A sweep of samples per primary ray counts its samples, not its one pixel sample.
+            spp = m.spp * int(run.budget) if technique.samples_at else m.spp
+            return RunRecord(run.technique, run.kind, run.budget, run.seed, spp=spp,
                              time=m.time, file=paths.relative(out), metrics=m.metrics)
         return work
 
@@ -252,7 +255,8 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
         "techniques": {t.name: {"label": t.label, "integrator": t.integrator,
-                                "fixed_spp": t.fixed_spp}
+                                "fixed_spp": t.fixed_spp,
+                                **({"samples_at": t.samples_at} if t.samples_at else {})}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
         "metrics": exp.metrics,

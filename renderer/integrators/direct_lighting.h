@@ -53,6 +53,9 @@ class DirectLighting final : public SampleIntegrator {
     uint32_t decisionRepeats() const override {
         return std::max({1u, estimator_->decisionRepeats(), bsdfSamples_});
     }
+    void prepare(const Scene& scene) override {
+        estimator_->prepare(scene, "/integrator/estimator");
+    }
 
   private:
     // The BSDF samples traced per pixel sample.

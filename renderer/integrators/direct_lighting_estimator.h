@@ -44,6 +44,11 @@ class DirectLightingEstimator {
     // (ShadingPoint::incidentEmission), which scenes with media do not provide.
     virtual bool worksInMedia() const { return true; }
 
+    // Called once the scene is built, before rendering: an estimator that needs something of
+    // the scene builds it here (two-stage sampling's summed-area table), and throws ConfigError
+    // at `pointer` (the estimator's JSON object) for a scene it cannot render.
+    virtual void prepare(const Scene& /*scene*/, const std::string& /*pointer*/) {}
+
     // Estimates the direct light at `point` towards the viewer, adding each sample's
     // contribution to the point (ShadingPoint::add).
     virtual void estimate(ShadingPoint& point) const = 0;

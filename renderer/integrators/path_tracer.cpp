@@ -23,6 +23,7 @@ void PathTracer::prepare(const Scene& scene) {
         throw ConfigError("/integrator/estimator/type",
                           "estimator '" + nee_->name() +
                               "' samples directions and cannot render participating media");
+    nee_->prepare(scene, "/integrator/estimator");
 }
 
 Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sample,

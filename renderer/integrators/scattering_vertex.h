@@ -97,6 +97,17 @@ class SurfaceVertex final : public ShadingPoint {
         return out_.decide2D(d, repeat, count);
     }
     const Frame* frame() const override { return &frame_; }
+    Vec3 position() const override { return hit_.position; }
+    bool scatteringShape(ScatteringShape* out) const override {
+        out->normal = wo_.z < 0 ? -frame_.n : frame_.n;
+        out->transmits = material_.hasTransmission();
+        LobePeaks local;
+        material_.peaks(ctx_, wo_, &local);
+        out->peaks.count = 0;
+        for (int i = 0; i < local.count; ++i)
+            out->peaks.add(frame_.toWorld(local.directions[i]));
+        return true;
+    }
     bool sampleScattering(float uLobe, const Vec2& u, Vec3* wi, float* pdf) const override {
         BsdfSample bs;
         if (!material_.sample(ctx_, wo_, uLobe, u, &bs) || bs.isSpecular()) return false;
@@ -173,6 +184,8 @@ class MediumVertex final : public ShadingPoint {
         return out_.decide2D(d, repeat, count);
     }
     const Frame* frame() const override { return nullptr; }
+    Vec3 position() const override { return position_; }
+    bool scatteringShape(ScatteringShape*) const override { return false; }
     bool sampleScattering(float, const Vec2& u, Vec3* wi, float* pdf) const override {
         *pdf = medium_.phase().sample(wo_, u, wi);
         return *pdf > 0;

@@ -11,8 +11,18 @@
 #include "math/rgb.h"
 #include "sampling/sampler.h"
 #include "scene/light.h"
+#include "scene/material.h"
 
 namespace rr {
+
+// Where a surface point scatters, for estimators that partition the sphere of directions
+// (two-stage sampling): the shading normal on the viewer's side, whether scattering also
+// reaches the other side (transmission), and the directions where its lobes peak (world).
+struct ScatteringShape {
+    Vec3 normal;
+    bool transmits = false;
+    LobePeaks peaks;
+};
 
 class ShadingPoint {
   public:
@@ -46,6 +56,10 @@ class ShadingPoint {
     virtual Vec2 decide2D(Decision d, uint32_t repeat, uint32_t count) const = 0;
     // The surface's shading frame (z along the shading normal); nullptr in a medium.
     virtual const Frame* frame() const = 0;
+    // Where the point is (the shadow rays' origin, before any offset).
+    virtual Vec3 position() const = 0;
+    // The shape of the surface's scattering; false in a medium.
+    virtual bool scatteringShape(ScatteringShape* out) const = 0;
     // A direction drawn from the vertex's own scattering distribution (BSDF or phase
     // function) with the given coordinates, and its density; false when none was drawn or the
     // draw is specular (no estimator that weighs directions can use it).

@@ -19,6 +19,7 @@ CameraSettings readCamera(ObjectReader& j) {
         c.apertureRadius = j.getFloat("aperture_radius", Range::positive());
         c.focusDistance = j.getFloat("focus_distance", Range::positive());
     }
+    c.samplePixelArea = j.getChoice("pixel_sample", {"area", "centre"}, "area") == "area";
     if (j.has("shutter")) {
         const auto s = j.getNumbers("shutter", 2, Range::unit());
         if (s[0] > s[1]) j.fail("shutter", "expected [open, close] with open <= close");

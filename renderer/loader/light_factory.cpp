@@ -6,6 +6,7 @@
 #include "loader/factories.h"
 #include "scene/lights/constant_environment.h"
 #include "scene/lights/environment_map.h"
+#include "scene/lights/latlong_resampling.h"
 #include "scene/lights/point_light.h"
 #include "scene/lights/spot_light.h"
 
@@ -50,12 +51,26 @@ std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& 
     const std::string layoutName = j.getChoice("layout", {"latlong", "probe"});
     const Rgb scale = j.getRgb("scale", Rgb(1.0f));
     const Frame toWorld = readRotation(j);
+    // "latlong_width": the probe resampled once into a lat-long map of that width, which is
+    // then the light every technique sees (two-stage sampling works on the lat-long grid).
+    int latLongWidth = 0;
+    if (j.has("latlong_width")) {
+        if (layoutName != "probe")
+            j.fail("latlong_width", "resampling to lat-long applies to \"layout\": \"probe\"");
+        latLongWidth = static_cast<int>(j.getInt("latlong_width", 0, Range::closed(16, 16384)));
+        if (latLongWidth % 2 != 0)
+            j.fail("latlong_width", "must be even (the map's height is half its width)");
+    }
     RgbImage image = readImageAsset(j, "file", assets, "environment map");
     if (layoutName == "probe" && image.width != image.height)
         j.fail("layout", "an angular probe must be square, " + j.getString("file") + " is " +
                              std::to_string(image.width) + "x" + std::to_string(image.height));
-    return std::make_unique<EnvironmentMap>(std::move(image), makeEnvLayout(layoutName), scale,
-                                            toWorld);
+    std::unique_ptr<EnvLayout> layout = makeEnvLayout(layoutName);
+    if (latLongWidth > 0) {
+        image = resampleToLatLong(image, *layout, latLongWidth);
+        layout = makeEnvLayout("latlong");
+    }
+    return std::make_unique<EnvironmentMap>(std::move(image), std::move(layout), scale, toWorld);
 }
 
 // {"radiance": L} is a constant environment, {"file": …} a map.

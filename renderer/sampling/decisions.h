@@ -23,6 +23,9 @@ enum class Decision : uint8_t {
     ResampleSelect,      // 1-D: whether the reservoir keeps a candidate
     CandidateLobe,       // 1-D: lobe of a candidate drawn from the BSDF
     CandidateDirection,  // 2-D: direction of a candidate drawn from a directional source
+    // Two-stage sampling (techniques/two_stage):
+    PeakLobe,       // 1-D: lobe of a BSDF sample drawn to find a peak
+    PeakDirection,  // 2-D: direction of that sample
     Count
 };
 
@@ -33,6 +36,7 @@ constexpr int dimensionCount(Decision d) {
         case Decision::LightPoint:
         case Decision::BsdfDirection:
         case Decision::CandidateDirection:
+        case Decision::PeakDirection:
             return 2;
         default:
             return 1;
@@ -67,6 +71,10 @@ constexpr const char* decisionName(Decision d) {
             return "candidate_lobe";
         case Decision::CandidateDirection:
             return "candidate_direction";
+        case Decision::PeakLobe:
+            return "peak_lobe";
+        case Decision::PeakDirection:
+            return "peak_direction";
         case Decision::Count:
             break;
     }

@@ -16,6 +16,10 @@ struct CameraSettings {
     float apertureRadius = 0;  // 0: pinhole
     float focusDistance = 1;
     float shutterOpen = 0, shutterClose = 0;
+    // False: every camera ray passes through its pixel's centre (no film-position decision), so
+    // that an image measures a pixel estimator's error alone, without the pixel's footprint
+    // (two-stage fig. 8's convergence per sample count).
+    bool samplePixelArea = true;
 };
 
 class Camera {
@@ -29,6 +33,7 @@ class Camera {
 
     bool isThinLens() const { return settings_.apertureRadius > 0; }
     bool hasShutterInterval() const { return settings_.shutterClose > settings_.shutterOpen; }
+    bool samplesPixelArea() const { return settings_.samplePixelArea; }
     const CameraSettings& settings() const { return settings_; }
     int width() const { return width_; }
     int height() const { return height_; }

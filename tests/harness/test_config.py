@@ -34,6 +34,20 @@ class ValidConfigTest(unittest.TestCase):
         self.assertEqual(exp.profiles["full"].matched_spp, [])
         self.assertEqual(exp.profiles["full"].table_seconds, 0.5)
 
+    def test_samples_at_sweeps_the_integrator_with_one_pixel_sample(self):
+        doc = valid()
+        doc["techniques"]["better"]["integrator"] = {
+            "type": "direct", "estimator": {"type": "two_stage", "samples": 1}}
+        doc["techniques"]["better"]["samples_at"] = ["/estimator/samples"]
+        better = load_config(doc).techniques["better"]
+        self.assertTrue(better.fixed_spp)
+        integrator, spp = better.integrator_for(16)
+        self.assertEqual(integrator["estimator"]["samples"], 16)
+        self.assertEqual(spp, 1)
+        self.assertEqual(better.integrator["estimator"]["samples"], 1)  # not changed in place
+        base = load_config(doc).techniques["base"]
+        self.assertEqual(base.integrator_for(16), (base.integrator, 16))
+
     def test_thresholds_and_paper_are_optional(self):
         doc = valid()
         del doc["thresholds"], doc["paper"]
@@ -125,6 +139,10 @@ class BadConfigTest(unittest.TestCase):
              "/thresholds/checks/0/max_error", "positive finite"),
             (lambda d: d["techniques"]["better"].update(fixed_spp="yes"),
              "/techniques/better/fixed_spp", "true or false"),
+            (lambda d: d["techniques"]["better"].update(samples_at=["/light_samples"]),
+             "/techniques/better/samples_at/0", "an integer the integrator already has"),
+            (lambda d: d["techniques"]["better"].update(samples_at="/light_samples"),
+             "/techniques/better/samples_at", "list of JSON pointers"),
             (lambda d: d["profiles"]["quick"]["table"].update(seconds=0.25),
              "/profiles/quick/table/seconds", "seconds budgets or \"matched\""),
             (lambda d: d["profiles"]["quick"]["table"].update(seconds="match"),

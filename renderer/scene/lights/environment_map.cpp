@@ -105,9 +105,13 @@ int EnvironmentMap::texelIndex(Vec2 st) const {
 
 void EnvironmentMap::setDirection(const Vec3& reference, const Vec3& local,
                                   LightSample* out) const {
-    out->direction = normalize(toWorld_.toWorld(local));
+    aim(reference, normalize(toWorld_.toWorld(local)), out);
+}
+
+void EnvironmentMap::aim(const Vec3& reference, const Vec3& direction, LightSample* out) const {
+    out->direction = direction;
     // Twice the diameter: outside the bounding sphere from any point inside it.
-    out->position = reference + out->direction * (4.0f * radius_);
+    out->position = reference + direction * (4.0f * radius_);
     out->normal = Vec3(0.0f);
     out->errorScale = 0;
     out->isDelta = false;

@@ -60,6 +60,17 @@ class EnvironmentMap final : public Light {
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
 
     const EnvLayout& layout() const { return *layout_; }
+    // The map's frame in the world (its axes are the images of the map's X, Y, Z).
+    const Frame& toWorld() const { return toWorld_; }
+    int width() const { return image_.width; }
+    int height() const { return image_.height; }
+    // The radiance of texel (col, row), as escaped rays see it (scaled and masked).
+    const Rgb& texel(int col, int row) const {
+        return image_.pixels[size_t(row) * image_.width + col];
+    }
+    // Fills `out`'s direction (world, unit), shadow-ray target and flags for a direction drawn
+    // by a sampler of the caller's; radiance and pdf are the caller's.
+    void aim(const Vec3& reference, const Vec3& direction, LightSample* out) const;
     // ∫ L dω over the sphere: Σ texel radiance × texel solid angle.
     const Rgb& radianceIntegral() const { return radianceIntegral_; }
     // The side of sampleProxy()'s blocks, in texels (1: the stand-in is sample() itself).

@@ -1,0 +1,182 @@
+#include "techniques/two_stage/two_stage_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "config/config_error.h"
+#include "scene/lights/environment_map.h"
+#include "techniques/two_stage/hierarchical_warp.h"
+#include "techniques/two_stage/partition.h"
+
+namespace rr::two_stage {
+
+namespace {
+
+constexpr double kPiD = std::numbers::pi;
+
+// The map-frame direction of lat-long image point (x/W, y/H) (LatLongLayout's convention).
+Vec3 latLongDirection(double x, double y, int width, int height) {
+    const double theta = kPiD * y / height, phi = 2 * kPiD * x / width;
+    const double sinTheta = std::sin(theta);
+    return Vec3(float(sinTheta * std::sin(phi)), float(std::cos(theta)),
+                float(-sinTheta * std::cos(phi)));
+}
+
+// f = luminance(fr·|cos θ|) at the map's grid points, seen from a shading point.
+class SurfaceFactor final : public ProductFactor {
+  public:
+    SurfaceFactor(const ShadingPoint& point, const EnvironmentMap& map)
+        : point_(point), map_(map) {}
+    double at(int x, int y) const override {
+        const Vec3 w = map_.toWorld().toWorld(latLongDirection(x, y, map_.width(), map_.height()));
+        return double(point_.scattering(w).luminance());
+    }
+
+  private:
+    const ShadingPoint& point_;
+    const EnvironmentMap& map_;
+};
+
+// The map's texel-space position of world direction `w`.
+void mapPosition(const EnvironmentMap& map, const Vec3& w, double* x, double* y) {
+    const Vec2 st = map.layout().imagePoint(map.toWorld().toLocal(w));
+    *x = double(st.x) * map.width();
+    *y = double(st.y) * map.height();
+}
+
+int nearestGrid(double v) {
+    return static_cast<int>(std::lround(v));
+}
+
+// dω/(ds dt) at image row position y (texel units): 2π² cos(latitude).
+double solidAngleJacobian(double y, int height) {
+    return 2 * kPiD * kPiD * std::sin(kPiD * y / height);
+}
+
+}  // namespace
+
+nlohmann::json TwoStageEstimator::parameters() const {
+    return {{"type", name()},
+            {"samples", settings_.samples},
+            {"splits", settings_.splits},
+            {"peaks", settings_.peaks == PeakSource::Analytic ? "analytic" : "bsdf"}};
+}
+
+uint32_t TwoStageEstimator::peakSamples() const {
+    return settings_.peaks == PeakSource::BsdfSamples ? std::max(1u, settings_.samples / 4) : 0;
+}
+
+uint32_t TwoStageEstimator::decisionRepeats() const {
+    return std::max(settings_.samples, peakSamples());
+}
+
+void TwoStageEstimator::prepare(const Scene& scene, const std::string& pointer) {
+    const auto lights = scene.lights();
+    const EnvironmentMap* map =
+        lights.size() == 1 ? dynamic_cast<const EnvironmentMap*>(lights[0]) : nullptr;
+    if (!map)
+        throw ConfigError(pointer + "/type",
+                          "two_stage samples an environment map: the scene's lights must be "
+                          "exactly one environment map (\"file\"), it has " +
+                              std::to_string(lights.size()) + " light(s) of other kinds");
+    if (!dynamic_cast<const LatLongLayout*>(&map->layout()))
+        throw ConfigError(pointer + "/type",
+                          "two_stage works on a latitude-longitude map: give the probe's light "
+                          "\"latlong_width\" to resample it at load");
+    attach(*map);
+}
+
+void TwoStageEstimator::attach(const EnvironmentMap& map) {
+    map_ = &map;
+    table_ = SummedAreaTable(map);
+}
+
+bool TwoStageEstimator::partitionAt(ShadingPoint& point, Partition* partition) const {
+    ScatteringShape shape;
+    if (!point.scatteringShape(&shape)) return false;
+    const int height = map_->height();
+    double xn, yn;
+    mapPosition(*map_, shape.normal, &xn, &yn);
+    PartitionRequest request;
+    // The root (Fig. 3): the rows of the hemisphere around the normal, every row for
+    // materials that also transmit.
+    request.rootY0 = shape.transmits ? 0 : std::max(0, int(std::floor(yn - height / 2.0)));
+    request.rootY1 = shape.transmits ? height : std::min(height, int(std::ceil(yn + height / 2.0)));
+    request.normalX = nearestGrid(xn);
+    request.normalY = nearestGrid(yn);
+    request.splits = settings_.splits;
+    if (settings_.peaks == PeakSource::Analytic)
+        for (int i = 0; i < shape.peaks.count; ++i) {
+            double x, y;
+            mapPosition(*map_, shape.peaks.directions[size_t(i)], &x, &y);
+            request.addPeak(nearestGrid(x), nearestGrid(y));
+        }
+    const SurfaceFactor f(point, *map_);
+    partition->build(table_, request, f);
+    const uint32_t searches = peakSamples();
+    for (uint32_t k = 0; k < searches; ++k) {
+        Vec3 wi;
+        float pdf;
+        if (!point.sampleScattering(point.decide1D(Decision::PeakLobe, k, searches),
+                                    point.decide2D(Decision::PeakDirection, k, searches), &wi,
+                                    &pdf))
+            continue;
+        double x, y;
+        mapPosition(*map_, wi, &x, &y);
+        partition->offerPeak(nearestGrid(x), nearestGrid(y));
+    }
+    partition->finish();
+    return true;
+}
+
+bool TwoStageEstimator::warpDirection(const Partition& partition, double s, double t,
+                                      Vec3* direction, int* col, int* row, double* pdf) const {
+    WarpedPoint p;
+    if (!warp(partition, table_, s, t, &p)) return false;
+    const int width = map_->width(), height = map_->height();
+    *col = std::clamp(static_cast<int>(p.x), 0, width - 1);
+    *row = std::clamp(static_cast<int>(p.y), 0, height - 1);
+    // The density per unit image area over dω/(ds dt): the appendix's last line divides
+    // (with the printed multiplication a constant L·f would not give 1/4π).
+    const double jacobian = solidAngleJacobian(p.y, height);
+    if (!(jacobian > 0)) return false;
+    *pdf = p.density / jacobian;
+    *direction = normalize(map_->toWorld().toWorld(latLongDirection(p.x, p.y, width, height)));
+    return std::isfinite(*pdf);
+}
+
+double TwoStageEstimator::pdf(const Partition& partition, const Vec3& direction) const {
+    double x, y;
+    mapPosition(*map_, direction, &x, &y);
+    const double jacobian = solidAngleJacobian(y, map_->height());
+    if (!(jacobian > 0)) return 0;
+    return densityAt(partition, table_, x, y) / jacobian;
+}
+
+void TwoStageEstimator::estimate(ShadingPoint& point) const {
+    // Per thread, reused: no allocation once the first shading points have grown it.
+    thread_local Partition partition;
+    if (!partitionAt(point, &partition)) return;
+    const uint32_t n = settings_.samples;
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec2 u = point.decide2D(Decision::LightPoint, i, n);
+        Vec3 wi;
+        int col, row;
+        double pdf;
+        if (!warpDirection(partition, u.x, u.y, &wi, &col, &row, &pdf)) continue;
+        const Rgb& le = map_->texel(col, row);
+        if (le.isBlack()) continue;
+        const Rgb f = point.scattering(wi);
+        if (f.isBlack()) continue;
+        LightSample ls;
+        map_->aim(point.position(), wi, &ls);
+        float survival;
+        const Rgb tr = point.visibility(ls, true, &survival);
+        if (tr.isBlack()) continue;
+        // Eq. (2): (1/N) Σ Le·fr·|cos θ|·V / p.
+        point.add(point.contribution(f, le, tr, 1.0f, float(pdf * n)));
+    }
+}
+
+}  // namespace rr::two_stage

@@ -1,0 +1,75 @@
+// Two-stage importance sampling of an environment map (Cline, Egbert, Talbot & Cardon 2006), a
+// direct-lighting estimator (integrators/direct_lighting_estimator.h) usable by `direct` and at
+// every vertex of `path_mis`. Per shading point: stage 1 partitions the lat-long map into a BSP
+// tree approximating Le·f (partition.h), stage 2 warps N sample points through it
+// (hierarchical_warp.h), and eq. (2) averages Le·fr·|cos θ|·V / p_ω over them, without MIS:
+// unbiased because p_ω is tracked exactly and is non-zero wherever Le·f is (the partition's
+// floor).
+//
+// The scene's lights must be one environment map in the latitude-longitude layout (a probe is
+// resampled at load with the light's `latlong_width`); the estimate covers all of its light
+// (FoundEmission::Excluded). Surfaces only.
+#pragma once
+
+#include <cstdint>
+
+#include "integrators/direct_lighting_estimator.h"
+#include "techniques/two_stage/partition.h"
+#include "techniques/two_stage/summed_area_table.h"
+
+namespace rr {
+class EnvironmentMap;
+}
+
+namespace rr::two_stage {
+
+enum class PeakSource : uint8_t {
+    Analytic,     // the materials' own peaks (mirror, retro-reflection, lobe axes, cone)
+    BsdfSamples,  // N/4 BSDF samples, each a peak where f beats its leaf's corners (§2.2)
+};
+
+struct TwoStageSettings {
+    uint32_t samples = 1;  // N per shading point
+    uint32_t splits = 1;   // refinement splits per shading point (the paper: N)
+    PeakSource peaks = PeakSource::Analytic;
+};
+
+class TwoStageEstimator final : public DirectLightingEstimator {
+  public:
+    explicit TwoStageEstimator(const TwoStageSettings& settings) : settings_(settings) {}
+
+    std::string name() const override { return "two_stage"; }
+    nlohmann::json parameters() const override;
+    uint32_t lightSamples() const override { return settings_.samples; }
+    FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
+    uint32_t decisionRepeats() const override;
+    bool worksInMedia() const override { return false; }
+    // Checks the scene's lights and attaches the map.
+    void prepare(const Scene& scene, const std::string& pointer) override;
+    // Builds the summed-area table of `map` (lat-long layout), which must outlive the
+    // estimator.
+    void attach(const EnvironmentMap& map);
+    void estimate(ShadingPoint& point) const override;
+
+    // What estimate() does before its samples: stage 1 at `point`, into `partition`. False
+    // where the point has no surface scattering.
+    bool partitionAt(ShadingPoint& point, Partition* partition) const;
+    // A direction warped through `partition` from (s, t): world direction, its texel and its
+    // density per steradian. False when the warp yields none.
+    bool warpDirection(const Partition& partition, double s, double t, Vec3* direction, int* col,
+                       int* row, double* pdf) const;
+    // The density per steradian of world direction `direction` under `partition`.
+    double pdf(const Partition& partition, const Vec3& direction) const;
+
+    const SummedAreaTable& table() const { return table_; }
+    const EnvironmentMap& map() const { return *map_; }
+
+  private:
+    uint32_t peakSamples() const;
+
+    TwoStageSettings settings_;
+    const EnvironmentMap* map_ = nullptr;
+    SummedAreaTable table_;
+};
+
+}  // namespace rr::two_stage
