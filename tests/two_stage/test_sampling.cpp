@@ -12,19 +12,21 @@
 //  - a probe resampled with `latlong_width` is the light escaped rays see.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
-#include "io/exr_io.h"
 #include "loader/factories.h"
 #include "sampling/warps.h"
 #include "scene/lights/environment_map.h"
 #include "support/chi2.h"
+#include "support/maps.h"
 #include "support/scratch.h"
 #include "support/test_random.h"
 #include "techniques/two_stage/hierarchical_warp.h"
@@ -63,22 +65,8 @@ std::unique_ptr<EnvironmentMap> loadMap(const Json& description) {
 }
 
 fs::path writeSyntheticMap() {
-    ExrImage exr;
-    exr.width = kMapWidth;
-    exr.height = kMapHeight;
-    for (const char* c : {"R", "G", "B"})
-        exr.channels[c].resize(size_t(kMapWidth) * kMapHeight);
-    for (int row = 0; row < kMapHeight; ++row)
-        for (int col = 0; col < kMapWidth; ++col) {
-            const Rgb p = syntheticTexel(col, row);
-            const size_t i = size_t(row) * kMapWidth + col;
-            exr.channels["R"][i] = p.r;
-            exr.channels["G"][i] = p.g;
-            exr.channels["B"][i] = p.b;
-        }
-    const fs::path file = scratchDirectory() / "synthetic_latlong.exr";
-    writeExr(file, exr);
-    return file;
+    return writeRgbExr(scratchDirectory() / "synthetic_latlong.exr", kMapWidth, kMapHeight,
+                       syntheticTexel);
 }
 
 std::unique_ptr<EnvironmentMap> syntheticMap() {
@@ -228,7 +216,7 @@ Frame frameOf(const PointCase& p) {
 
 std::unique_ptr<TwoStageEstimator> estimatorOn(const EnvironmentMap& map,
                                                TwoStageSettings settings = {}) {
-    if (settings.samples == 1) settings.samples = settings.splits = kSamplesPerPoint;
+    if (settings.samples == 1) settings.samples = kSamplesPerPoint;
     auto e = std::make_unique<TwoStageEstimator>(settings);
     e->attach(map);
     return e;
@@ -322,6 +310,34 @@ TEST(TwoStageSampling, WarpsFollowTheirDensityOnGalileo) {
             checkPoint(*map, m, p, "galileo");
 }
 
+// Fig. 3: the initial partition splits the root at the normal's grid point and at the column
+// half a turn away, six regions in three columns and two rows (f constant: no cascade, no
+// refinement).
+TEST(TwoStagePartition, InitialPartitionIsSixRegions) {
+    const auto map = syntheticMap();
+    const two_stage::SummedAreaTable table(*map);
+    struct Constant final : two_stage::ProductFactor {
+        double at(int, int) const override { return 1; }
+    } f;
+    two_stage::PartitionRequest request;
+    request.rootY0 = 10;
+    request.rootY1 = 42;
+    request.normalX = 100;  // the column half a turn away, 164, wraps to 36
+    request.normalY = 26;
+    Partition partition;
+    partition.build(table, request, f);
+    partition.finish();
+    std::set<std::array<int, 4>> leaves;
+    for (int i = 0; i < int(partition.stats().regions); ++i) {
+        const two_stage::Region& r = partition.region(i);
+        if (r.isLeaf()) leaves.insert({r.x0, r.y0, r.x1, r.y1});
+    }
+    const std::set<std::array<int, 4>> expected = {{0, 10, 36, 26},    {36, 10, 100, 26},
+                                                   {100, 10, 128, 26}, {0, 26, 36, 42},
+                                                   {36, 26, 100, 42},  {100, 26, 128, 42}};
+    EXPECT_EQ(leaves, expected);
+}
+
 // A χ² that cannot tell the warp from a plausible bug is blind: the density of a warp that
 // stopped at the partition's leaves (uniform inside each leaf, without the virtual regions that
 // follow the map below them) must be rejected.
@@ -385,15 +401,8 @@ TEST(TwoStageSampling, SolidAngleDensityIntegratesToOne) {
 // point's own θ. A Jacobian that multiplied instead of dividing would be off by orders.
 TEST(TwoStageSampling, ConstantProductGivesOneOverFourPi) {
     constexpr int kWidth = 64, kHeight = 32;
-    const fs::path file = scratchDirectory() / "constant.exr";
-    {
-        ExrImage exr;
-        exr.width = kWidth;
-        exr.height = kHeight;
-        for (const char* c : {"R", "G", "B"})
-            exr.channels[c].assign(kWidth * kHeight, 1.0f);
-        writeExr(file, exr);
-    }
+    const fs::path file = writeRgbExr(scratchDirectory() / "constant.exr", kWidth, kHeight,
+                                      [](int, int) { return Rgb(1.0f); });
     const auto map =
         loadMap(Json{{"type", "environment"}, {"file", file.string()}, {"layout", "latlong"}});
     ScatteringShape shape;

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "io/exr_io.h"
 #include "support/chi2.h"
+#include "support/maps.h"
 #include "support/mean_agreement.h"
 #include "support/scratch.h"
 
@@ -59,23 +59,14 @@ double threshold() {
 
 // A 64 × 32 lat-long map with a bright patch, a black band and a dim lower half.
 std::string syntheticMapFile() {
-    ExrImage exr;
-    exr.width = 64;
-    exr.height = 32;
-    for (const char* c : {"R", "G", "B"})
-        exr.channels[c].assign(64 * 32, 0.0f);
-    for (int row = 0; row < 32; ++row)
-        for (int col = 0; col < 64; ++col) {
-            const size_t i = size_t(row) * 64 + col;
-            float v = row < 14 ? 0.5f + 0.02f * float(col % 16) : (row < 17 ? 0.0f : 0.05f);
-            if (col >= 30 && col < 33 && row >= 8 && row < 10) v = 300;
-            exr.channels["R"][i] = v;
-            exr.channels["G"][i] = 0.8f * v;
-            exr.channels["B"][i] = 0.6f * v;
-        }
-    const auto file = scratchDirectory("synthetic") / "map.exr";
-    writeExr(file, exr);
-    return file.string();
+    return writeRgbExr(scratchDirectory("synthetic") / "map.exr", 64, 32,
+                       [](int col, int row) {
+                           float v = row < 14 ? 0.5f + 0.02f * float(col % 16)
+                                              : (row < 17 ? 0.0f : 0.05f);
+                           if (col >= 30 && col < 33 && row >= 8 && row < 10) v = 300;
+                           return Rgb(v, 0.8f * v, 0.6f * v);
+                       })
+        .string();
 }
 
 bool galileoAvailable() {

@@ -1,7 +1,6 @@
 #include "techniques/ris/ris_integrator.h"
 
 #include "integrators/direct_lighting.h"
-#include "integrators/scattering_vertex.h"
 #include "techniques/ris/ris_schedule.h"
 
 namespace rr::ris {
@@ -55,16 +54,7 @@ template <class Use>
 Rgb RisIntegrator::atFirstHit(const Scene& scene, int x, int y, const PixelSample& sample,
                               RayCounters& rays, const Use& use) const {
     StandardSampling standard(scene, sample);
-    return shadeFirstHit(
-        scene, standard, x, y, rays,
-        [&](const SurfaceHit& hit, const Material& material, const ShadingContext& ctx,
-            const Frame& frame, const Vec3& wo, Rgb* radiance) {
-            const Rgb unscaled(1.0f);
-            const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays};
-            SurfaceVertex<false, StandardSampling> point(out, hit, material, ctx, frame, wo,
-                                                         nullptr, 0);
-            use(point);
-        });
+    return estimateAtFirstHit(scene, standard, x, y, rays, use);
 }
 
 Rgb RisIntegrator::estimate(const Scene& scene, int x, int y, const PixelSample& sample,

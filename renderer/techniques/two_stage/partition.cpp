@@ -116,14 +116,19 @@ int Partition::depth() const {
 }
 
 // "Split at (x, y)" (§2.2): the leaf holding the point along x, then the leaves on both sides
-// of the new line along y. A coordinate already on an edge is not split again.
+// of the new line along y. A point on an existing edge splits the leaves on both sides of that
+// edge (Fig. 3: the second initial point lies on the first one's row, and both rows are split
+// there, giving six regions). A coordinate already on an edge is not split again.
 void Partition::splitAtPoint(int x, int y) {
     const int width = table_->width();
     x = ((x % width) + width) % width;
-    const Region& root = regions_[0];
-    const double py = std::clamp(double(y), double(root.y0), root.y1 - 0.5);
-    const int leaf = leafAt(x, py);
-    if (regions_[size_t(leaf)].x0 < x && x < regions_[size_t(leaf)].x1) split(leaf, true, x);
+    const int rootY0 = regions_[0].y0, rootY1 = regions_[0].y1;
+    for (const double py : {y - 0.5, y + 0.5}) {
+        if (py < rootY0 || py > rootY1) continue;
+        const int leaf = leafAt(x, py);
+        if (regions_[size_t(leaf)].x0 < x && x < regions_[size_t(leaf)].x1) split(leaf, true, x);
+    }
+    const double py = std::clamp(double(y), double(rootY0), rootY1 - 0.5);
     for (const double px : {x > 0 ? x - 0.5 : width - 0.5, x + 0.5}) {  // x wraps around
         const int side = leafAt(px, py);
         if (regions_[size_t(side)].y0 < y && y < regions_[size_t(side)].y1) split(side, false, y);

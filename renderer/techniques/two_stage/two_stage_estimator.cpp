@@ -56,19 +56,26 @@ double solidAngleJacobian(double y, int height) {
 
 }  // namespace
 
-nlohmann::json TwoStageEstimator::parameters() const {
-    return {{"type", name()},
-            {"samples", settings_.samples},
-            {"splits", settings_.splits},
-            {"peaks", settings_.peaks == PeakSource::Analytic ? "analytic" : "bsdf"}};
+double SampleMoments::standardDeviation() const {
+    if (count < 2) return 0;
+    const double mean = sum / count;
+    return std::sqrt(std::max(0.0, (sumSquares - mean * sum) / (count - 1)));
 }
 
-uint32_t TwoStageEstimator::peakSamples() const {
-    return settings_.peaks == PeakSource::BsdfSamples ? std::max(1u, settings_.samples / 4) : 0;
+nlohmann::json TwoStageEstimator::parameters() const {
+    nlohmann::json p = {{"type", name()},
+                        {"samples", settings_.samples},
+                        {"peaks", settings_.peaks == PeakSource::Analytic ? "analytic" : "bsdf"}};
+    if (settings_.splits) p["splits"] = *settings_.splits;
+    return p;
+}
+
+uint32_t TwoStageEstimator::peakSamples(uint32_t samples) const {
+    return settings_.peaks == PeakSource::BsdfSamples ? std::max(1u, samples / 4) : 0;
 }
 
 uint32_t TwoStageEstimator::decisionRepeats() const {
-    return std::max(settings_.samples, peakSamples());
+    return std::max(settings_.samples, peakSamples(settings_.samples));
 }
 
 void TwoStageEstimator::prepare(const Scene& scene, const std::string& pointer) {
@@ -92,7 +99,8 @@ void TwoStageEstimator::attach(const EnvironmentMap& map) {
     table_ = SummedAreaTable(map);
 }
 
-bool TwoStageEstimator::partitionAt(ShadingPoint& point, Partition* partition) const {
+bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
+                                    Partition* partition) const {
     ScatteringShape shape;
     if (!point.scatteringShape(&shape)) return false;
     const int height = map_->height();
@@ -105,7 +113,7 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, Partition* partition) c
     request.rootY1 = shape.transmits ? height : std::min(height, int(std::ceil(yn + height / 2.0)));
     request.normalX = nearestGrid(xn);
     request.normalY = nearestGrid(yn);
-    request.splits = settings_.splits;
+    request.splits = settings_.splitsFor(samples);
     if (settings_.peaks == PeakSource::Analytic)
         for (int i = 0; i < shape.peaks.count; ++i) {
             double x, y;
@@ -114,7 +122,7 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, Partition* partition) c
         }
     const SurfaceFactor f(point, *map_);
     partition->build(table_, request, f);
-    const uint32_t searches = peakSamples();
+    const uint32_t searches = peakSamples(samples);
     for (uint32_t k = 0; k < searches; ++k) {
         Vec3 wi;
         float pdf;
@@ -154,29 +162,36 @@ double TwoStageEstimator::pdf(const Partition& partition, const Vec3& direction)
     return densityAt(partition, table_, x, y) / jacobian;
 }
 
-void TwoStageEstimator::estimate(ShadingPoint& point) const {
+void TwoStageEstimator::estimate(ShadingPoint& point, uint32_t samples,
+                                 SampleMoments* moments) const {
     // Per thread, reused: no allocation once the first shading points have grown it.
     thread_local Partition partition;
-    if (!partitionAt(point, &partition)) return;
-    const uint32_t n = settings_.samples;
-    for (uint32_t i = 0; i < n; ++i) {
-        const Vec2 u = point.decide2D(Decision::LightPoint, i, n);
-        Vec3 wi;
-        int col, row;
-        double pdf;
-        if (!warpDirection(partition, u.x, u.y, &wi, &col, &row, &pdf)) continue;
-        const Rgb& le = map_->texel(col, row);
-        if (le.isBlack()) continue;
-        const Rgb f = point.scattering(wi);
-        if (f.isBlack()) continue;
-        LightSample ls;
-        map_->aim(point.position(), wi, &ls);
-        float survival;
-        const Rgb tr = point.visibility(ls, true, &survival);
-        if (tr.isBlack()) continue;
+    if (!partitionAt(point, samples, &partition)) return;
+    for (uint32_t i = 0; i < samples; ++i) {
+        const Rgb value = sample(point, partition, i, samples);
+        if (moments) moments->add(value.luminance());
         // Eq. (2): (1/N) Σ Le·fr·|cos θ|·V / p.
-        point.add(point.contribution(f, le, tr, 1.0f, float(pdf * n)));
+        if (!value.isBlack()) point.add(value / float(samples));
     }
+}
+
+Rgb TwoStageEstimator::sample(ShadingPoint& point, const Partition& partition, uint32_t i,
+                              uint32_t samples) const {
+    const Vec2 u = point.decide2D(Decision::LightPoint, i, samples);
+    Vec3 wi;
+    int col, row;
+    double pdf;
+    if (!warpDirection(partition, u.x, u.y, &wi, &col, &row, &pdf)) return Rgb(0.0f);
+    const Rgb& le = map_->texel(col, row);
+    if (le.isBlack()) return Rgb(0.0f);
+    const Rgb f = point.scattering(wi);
+    if (f.isBlack()) return Rgb(0.0f);
+    LightSample ls;
+    map_->aim(point.position(), wi, &ls);
+    float survival;
+    const Rgb tr = point.visibility(ls, true, &survival);
+    if (tr.isBlack()) return Rgb(0.0f);
+    return point.contribution(f, le, tr, 1.0f, float(pdf));
 }
 
 }  // namespace rr::two_stage

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "integrators/direct_lighting_estimator.h"
 #include "techniques/two_stage/partition.h"
@@ -30,8 +31,26 @@ enum class PeakSource : uint8_t {
 
 struct TwoStageSettings {
     uint32_t samples = 1;  // N per shading point
-    uint32_t splits = 1;   // refinement splits per shading point (the paper: N)
+    // Refinement splits per shading point; none given: as many as samples (the paper's rule).
+    std::optional<uint32_t> splits;
     PeakSource peaks = PeakSource::Analytic;
+
+    uint32_t splitsFor(uint32_t sampleCount) const { return splits.value_or(sampleCount); }
+};
+
+// The moments of one estimate's per-sample values (the luminance of Le·fr·|cos θ|·V / p, zero
+// for samples that found no light), for §5's allocation of samples to pixels.
+struct SampleMoments {
+    double sum = 0, sumSquares = 0;
+    uint32_t count = 0;
+
+    void add(double v) {
+        sum += v;
+        sumSquares += v * v;
+        ++count;
+    }
+    // The samples' standard deviation (n − 1 in the denominator); 0 below two samples.
+    double standardDeviation() const;
 };
 
 class TwoStageEstimator final : public DirectLightingEstimator {
@@ -49,11 +68,19 @@ class TwoStageEstimator final : public DirectLightingEstimator {
     // Builds the summed-area table of `map` (lat-long layout), which must outlive the
     // estimator.
     void attach(const EnvironmentMap& map);
-    void estimate(ShadingPoint& point) const override;
+    void estimate(ShadingPoint& point) const override {
+        estimate(point, settings_.samples, nullptr);
+    }
+    // With a sample count of the caller's (§5's variable allocation; as many splits unless the
+    // settings give them), adding each sample's value to *moments when not null.
+    void estimate(ShadingPoint& point, uint32_t samples, SampleMoments* moments) const;
 
     // What estimate() does before its samples: stage 1 at `point`, into `partition`. False
     // where the point has no surface scattering.
-    bool partitionAt(ShadingPoint& point, Partition* partition) const;
+    bool partitionAt(ShadingPoint& point, Partition* partition) const {
+        return partitionAt(point, settings_.samples, partition);
+    }
+    bool partitionAt(ShadingPoint& point, uint32_t samples, Partition* partition) const;
     // A direction warped through `partition` from (s, t): world direction, its texel and its
     // density per steradian. False when the warp yields none.
     bool warpDirection(const Partition& partition, double s, double t, Vec3* direction, int* col,
@@ -64,8 +91,12 @@ class TwoStageEstimator final : public DirectLightingEstimator {
     const SummedAreaTable& table() const { return table_; }
     const EnvironmentMap& map() const { return *map_; }
 
+    const TwoStageSettings& settings() const { return settings_; }
+
   private:
-    uint32_t peakSamples() const;
+    uint32_t peakSamples(uint32_t samples) const;
+    // Sample i of `samples`: Le·fr·|cos θ|·V / p of a direction warped through `partition`.
+    Rgb sample(ShadingPoint& point, const Partition& partition, uint32_t i, uint32_t samples) const;
 
     TwoStageSettings settings_;
     const EnvironmentMap* map_ = nullptr;
