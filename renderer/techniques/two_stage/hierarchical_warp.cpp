@@ -32,8 +32,8 @@ struct VirtualRegion {
     bool splitsAlongX() const { return x1 - x0 > y1 - y0; }
 };
 
-// The first half of `r` along its longer axis (at the integer midpoint) and its probability
-// and area fraction; `second` receives the other half.
+// A virtual region's two halves along its longer axis (at the integer midpoint), with the
+// first half's probability and area fraction.
 struct VirtualSplit {
     VirtualRegion first, second;
     double probA, areaFractionA;

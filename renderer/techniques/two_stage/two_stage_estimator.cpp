@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "config/config_error.h"
 #include "scene/lights/environment_map.h"
@@ -13,29 +12,28 @@ namespace rr::two_stage {
 
 namespace {
 
-constexpr double kPiD = std::numbers::pi;
-
-// The map-frame direction of lat-long image point (x/W, y/H) (LatLongLayout's convention).
-Vec3 latLongDirection(double x, double y, int width, int height) {
-    const double theta = kPiD * y / height, phi = 2 * kPiD * x / width;
-    const double sinTheta = std::sin(theta);
-    return Vec3(float(sinTheta * std::sin(phi)), float(std::cos(theta)),
-                float(-sinTheta * std::cos(phi)));
+// The map-frame direction at texel-space point (x, y) of a lat-long map.
+Vec3 mapDirection(const EnvironmentMap& map, const LatLongLayout& layout, double x, double y) {
+    Vec3 w;
+    float jacobian;
+    layout.direction({float(x / map.width()), float(y / map.height())}, &w, &jacobian);
+    return w;
 }
 
 // f = luminance(fr·|cos θ|) at the map's grid points, seen from a shading point.
 class SurfaceFactor final : public ProductFactor {
   public:
-    SurfaceFactor(const ShadingPoint& point, const EnvironmentMap& map)
-        : point_(point), map_(map) {}
+    SurfaceFactor(const ShadingPoint& point, const EnvironmentMap& map, const LatLongLayout& layout)
+        : point_(point), map_(map), layout_(layout) {}
     double at(int x, int y) const override {
-        const Vec3 w = map_.toWorld().toWorld(latLongDirection(x, y, map_.width(), map_.height()));
+        const Vec3 w = map_.toWorld().toWorld(mapDirection(map_, layout_, x, y));
         return double(point_.scattering(w).luminance());
     }
 
   private:
     const ShadingPoint& point_;
     const EnvironmentMap& map_;
+    const LatLongLayout& layout_;
 };
 
 // The map's texel-space position of world direction `w`.
@@ -47,11 +45,6 @@ void mapPosition(const EnvironmentMap& map, const Vec3& w, double* x, double* y)
 
 int nearestGrid(double v) {
     return static_cast<int>(std::lround(v));
-}
-
-// dω/(ds dt) at image row position y (texel units): 2π² cos(latitude).
-double solidAngleJacobian(double y, int height) {
-    return 2 * kPiD * kPiD * std::sin(kPiD * y / height);
 }
 
 }  // namespace
@@ -96,6 +89,7 @@ void TwoStageEstimator::prepare(const Scene& scene, const std::string& pointer) 
 
 void TwoStageEstimator::attach(const EnvironmentMap& map) {
     map_ = &map;
+    layout_ = &dynamic_cast<const LatLongLayout&>(map.layout());
     table_ = SummedAreaTable(map);
 }
 
@@ -120,7 +114,7 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
             mapPosition(*map_, shape.peaks.directions[size_t(i)], &x, &y);
             request.addPeak(nearestGrid(x), nearestGrid(y));
         }
-    const SurfaceFactor f(point, *map_);
+    const SurfaceFactor f(point, *map_, *layout_);
     partition->build(table_, request, f);
     const uint32_t searches = peakSamples(samples);
     for (uint32_t k = 0; k < searches; ++k) {
@@ -147,17 +141,18 @@ bool TwoStageEstimator::warpDirection(const Partition& partition, double s, doub
     *row = std::clamp(static_cast<int>(p.y), 0, height - 1);
     // The density per unit image area over dω/(ds dt): the appendix's last line divides
     // (with the printed multiplication a constant L·f would not give 1/4π).
-    const double jacobian = solidAngleJacobian(p.y, height);
+    const double jacobian = layout_->jacobian({float(p.x / width), float(p.y / height)});
     if (!(jacobian > 0)) return false;
     *pdf = p.density / jacobian;
-    *direction = normalize(map_->toWorld().toWorld(latLongDirection(p.x, p.y, width, height)));
+    *direction = normalize(map_->toWorld().toWorld(mapDirection(*map_, *layout_, p.x, p.y)));
     return std::isfinite(*pdf);
 }
 
 double TwoStageEstimator::pdf(const Partition& partition, const Vec3& direction) const {
     double x, y;
     mapPosition(*map_, direction, &x, &y);
-    const double jacobian = solidAngleJacobian(y, map_->height());
+    const double jacobian =
+        layout_->jacobian({float(x / map_->width()), float(y / map_->height())});
     if (!(jacobian > 0)) return 0;
     return densityAt(partition, table_, x, y) / jacobian;
 }

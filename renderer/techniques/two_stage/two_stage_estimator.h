@@ -20,7 +20,8 @@
 
 namespace rr {
 class EnvironmentMap;
-}
+class LatLongLayout;
+}  // namespace rr
 
 namespace rr::two_stage {
 
@@ -100,6 +101,7 @@ class TwoStageEstimator final : public DirectLightingEstimator {
 
     TwoStageSettings settings_;
     const EnvironmentMap* map_ = nullptr;
+    const LatLongLayout* layout_ = nullptr;  // the map's (final: calls need no indirection)
     SummedAreaTable table_;
 };
 
