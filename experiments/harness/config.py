@@ -111,7 +111,7 @@ class Thresholds:
 class Experiment:
     id: str  # "<paper>/<figure>"
     file: Path
-    config_sha256: str  # of the document without its thresholds (calibrating keeps results)
+    profile_sha256: dict[str, str]  # profile -> what results record as their config's hash
     description: str
     scene: Path
     overrides: dict[str, Any]  # JSON pointer -> value
@@ -347,12 +347,10 @@ def _threshold_disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
 
 def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
     """The Experiment of a document that passed every check."""
-    without_thresholds = {k: v for k, v in doc.items() if k != "thresholds"}
     return Experiment(
         id=paths.experiment_id(file),
         file=file,
-        config_sha256=hashlib.sha256(
-            json.dumps(without_thresholds, sort_keys=True).encode()).hexdigest(),
+        profile_sha256={name: profile_sha256(doc, name) for name in PROFILES},
         description=doc["description"],
         scene=_scene(doc),
         overrides=doc.get("set", {}),
@@ -368,6 +366,15 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         paper=[PaperNumbers(**entry) for _, entry in _paper_entries(doc)],
         thresholds=_thresholds(doc["thresholds"]) if "thresholds" in doc else None,
     )
+
+
+def profile_sha256(doc: dict[str, Any], profile: str) -> str:
+    """The hash of a config as one profile's runs see it: without the thresholds (calibrating
+    keeps results) and without the other profiles (editing the full profile leaves the quick
+    results current)."""
+    seen = {k: v for k, v in doc.items() if k != "thresholds"}
+    seen["profiles"] = {profile: doc["profiles"][profile]}
+    return hashlib.sha256(json.dumps(seen, sort_keys=True).encode()).hexdigest()
 
 
 def _profile(name: str, p: dict[str, Any]) -> Profile:

@@ -251,7 +251,7 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "experiment": exp.id,
         "profile": profile.name,
         "description": exp.description,
-        "config": {"file": paths.relative(exp.file), "sha256": exp.config_sha256},
+        "config": {"file": paths.relative(exp.file), "sha256": exp.profile_sha256[profile.name]},
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
         "techniques": {t.name: {"label": t.label, "integrator": t.integrator,

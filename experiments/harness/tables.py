@@ -235,11 +235,11 @@ def _analysis(paper: str) -> list[str]:
 
 
 def config_changed(doc: Results) -> bool:
-    """True when the experiment's config (thresholds aside) differs from the one that made
-    these results, or is gone."""
+    """True when the experiment's config, as this profile sees it, differs from the one that
+    made these results, or is gone."""
     try:
-        return config.load(paths.ROOT / doc["config"]["file"]).config_sha256 != doc["config"][
-            "sha256"]
+        exp = config.load(paths.ROOT / doc["config"]["file"])
+        return exp.profile_sha256[doc["profile"]] != doc["config"]["sha256"]
     except ConfigError:
         return True
 

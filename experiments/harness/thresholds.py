@@ -101,7 +101,7 @@ def calibrate(exp: Experiment, results: records.Results, spps: list[int]) -> Thr
     least MIN_MARGIN from the measurement: CI machines may pick other Embree kernels, which
     perturb renders slightly, and two near-identical techniques on shared seeds have a paired
     gain with a standard error of 1e-6, which no such perturbation should trip."""
-    if results["config"]["sha256"] != exp.config_sha256:
+    if results["config"]["sha256"] != exp.profile_sha256[results["profile"]]:
         raise HarnessFailure(f"{exp.id}: the results were made with another version of the "
                              "config; run the experiment again first")
     metric = exp.primary_metric

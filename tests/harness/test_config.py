@@ -55,6 +55,17 @@ class ValidConfigTest(unittest.TestCase):
         self.assertIsNone(exp.thresholds)
         self.assertEqual(exp.paper, [])
 
+    def test_a_profile_hash_ignores_thresholds_and_the_other_profile(self):
+        before = load_config(valid()).profile_sha256
+        doc = valid()
+        doc["thresholds"]["checks"][0]["max_error"] = 0.4
+        doc["profiles"]["full"]["seeds"] = 8
+        after = load_config(doc).profile_sha256
+        self.assertEqual(after["quick"], before["quick"])
+        self.assertNotEqual(after["full"], before["full"])
+        doc["techniques"]["better"]["label"] = "renamed"
+        self.assertNotEqual(load_config(doc).profile_sha256["quick"], before["quick"])
+
 
 class BadConfigTest(unittest.TestCase):
     def assertRejects(self, doc, pointer, fragment):

@@ -46,14 +46,14 @@ class CalibrateTest(unittest.TestCase):
                 to_json(summary_entry("better", "spp", 16, same,
                                       stats.gain([0.5] * 5, same, False)))]
         results = {"summary": rows, "seeds": list(range(5)), "profile": "quick",
-                   "config": {"sha256": exp.config_sha256},
+                   "config": {"sha256": exp.profile_sha256["quick"]},
                    "provenance": {"git_commit": None, "started": "2026-11-22"}}
         better = thresholds.calibrate(exp, results, [16]).checks[1]
         self.assertEqual(better.max_error, 0.255)  # 0.25 · 1.02
         self.assertEqual(better.min_gain, 1.96)  # 2 / 1.02 = 1.9608, rounded down
 
     def test_refuses_results_of_another_config(self):
-        results = {"config": {"sha256": "0" * 64}}
+        results = {"config": {"sha256": "0" * 64}, "profile": "quick"}
         with self.assertRaises(HarnessFailure):
             thresholds.calibrate(load_config(valid()), results, [16])
 
@@ -61,7 +61,7 @@ class CalibrateTest(unittest.TestCase):
         exp = load_config(valid())
         results = {"summary": [to_json(s) for s in summary()], "seeds": list(range(5)),
                    "profile": "quick",
-                   "config": {"sha256": exp.config_sha256},
+                   "config": {"sha256": exp.profile_sha256["quick"]},
                    "provenance": {"git_commit": "0123456789abc", "started": "2026-11-22T10:00"}}
         block = thresholds.calibrate(exp, results, [16])
         better = [c for c in block.checks if c.technique == "better"][0]
