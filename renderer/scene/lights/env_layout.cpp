@@ -4,11 +4,20 @@
 
 namespace rr {
 
+LatLongLayout::RowFactor LatLongLayout::rowFactor(float t) {
+    const float theta = kPi * t;
+    return {std::sin(theta), std::cos(theta)};
+}
+
+LatLongLayout::ColumnFactor LatLongLayout::columnFactor(float s) {
+    const float phi = kTwoPi * s;
+    return {std::sin(phi), std::cos(phi)};
+}
+
 bool LatLongLayout::direction(Vec2 st, Vec3* w, float* jacobian) const {
-    const float theta = kPi * st.y, phi = kTwoPi * st.x;
-    const float sinTheta = std::sin(theta);
-    *w = Vec3(sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi));
-    *jacobian = 2 * kPi * kPi * sinTheta;
+    const RowFactor row = rowFactor(st.y);
+    *w = fromFactors(row, columnFactor(st.x));
+    *jacobian = 2 * kPi * kPi * row.sinTheta;
     return true;
 }
 

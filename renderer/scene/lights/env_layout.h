@@ -32,6 +32,21 @@ class EnvLayout {
 // dω = sin θ dθ dφ = 2π² sin(πt) ds dt.
 class LatLongLayout final : public EnvLayout {
   public:
+    // The direction factors into a term of the row and a term of the column, so a grid of
+    // directions can be tabulated by rows and columns (two-stage sampling's corner
+    // evaluations): direction() is fromFactors(rowFactor(t), columnFactor(s)).
+    struct RowFactor {
+        float sinTheta, cosTheta;
+    };
+    struct ColumnFactor {
+        float sinPhi, cosPhi;
+    };
+    static RowFactor rowFactor(float t);
+    static ColumnFactor columnFactor(float s);
+    static Vec3 fromFactors(RowFactor r, ColumnFactor c) {
+        return Vec3(r.sinTheta * c.sinPhi, r.cosTheta, -r.sinTheta * c.cosPhi);
+    }
+
     bool direction(Vec2 st, Vec3* w, float* jacobian) const override;
     Vec2 imagePoint(const Vec3& w) const override;
     float jacobian(Vec2 st) const override;

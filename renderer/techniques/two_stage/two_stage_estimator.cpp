@@ -20,20 +20,24 @@ Vec3 mapDirection(const EnvironmentMap& map, const LatLongLayout& layout, double
     return w;
 }
 
-// f = luminance(fr·|cos θ|) at the map's grid points, seen from a shading point.
+// f = luminance(fr·|cos θ|) at the map's grid points, seen from a shading point; the grid
+// points' directions from the tabulated factors of their row and column.
 class SurfaceFactor final : public ProductFactor {
   public:
-    SurfaceFactor(const ShadingPoint& point, const EnvironmentMap& map, const LatLongLayout& layout)
-        : point_(point), map_(map), layout_(layout) {}
+    SurfaceFactor(const ShadingPoint& point, const EnvironmentMap& map,
+                  const std::vector<LatLongLayout::RowFactor>& rows,
+                  const std::vector<LatLongLayout::ColumnFactor>& columns)
+        : point_(point), map_(map), rows_(rows), columns_(columns) {}
     double at(int x, int y) const override {
-        const Vec3 w = map_.toWorld().toWorld(mapDirection(map_, layout_, x, y));
-        return double(point_.scattering(w).luminance());
+        const Vec3 local = LatLongLayout::fromFactors(rows_[size_t(y)], columns_[size_t(x)]);
+        return double(point_.scattering(map_.toWorld().toWorld(local)).luminance());
     }
 
   private:
     const ShadingPoint& point_;
     const EnvironmentMap& map_;
-    const LatLongLayout& layout_;
+    const std::vector<LatLongLayout::RowFactor>& rows_;
+    const std::vector<LatLongLayout::ColumnFactor>& columns_;
 };
 
 // The map's texel-space position of world direction `w`.
@@ -91,6 +95,13 @@ void TwoStageEstimator::attach(const EnvironmentMap& map) {
     map_ = &map;
     layout_ = &dynamic_cast<const LatLongLayout&>(map.layout());
     table_ = SummedAreaTable(map);
+    // The same image points as mapDirection() at grid points.
+    rowFactors_.resize(size_t(map.height()) + 1);
+    for (size_t y = 0; y < rowFactors_.size(); ++y)
+        rowFactors_[y] = LatLongLayout::rowFactor(float(double(y) / map.height()));
+    columnFactors_.resize(size_t(map.width()) + 1);
+    for (size_t x = 0; x < columnFactors_.size(); ++x)
+        columnFactors_[x] = LatLongLayout::columnFactor(float(double(x) / map.width()));
 }
 
 bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
@@ -114,7 +125,7 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
             mapPosition(*map_, shape.peaks.directions[size_t(i)], &x, &y);
             request.addPeak(nearestGrid(x), nearestGrid(y));
         }
-    const SurfaceFactor f(point, *map_, *layout_);
+    const SurfaceFactor f(point, *map_, rowFactors_, columnFactors_);
     partition->build(table_, request, f);
     const uint32_t searches = peakSamples(samples);
     for (uint32_t k = 0; k < searches; ++k) {

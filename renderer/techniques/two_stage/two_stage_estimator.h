@@ -13,14 +13,15 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "integrators/direct_lighting_estimator.h"
+#include "scene/lights/env_layout.h"
 #include "techniques/two_stage/partition.h"
 #include "techniques/two_stage/summed_area_table.h"
 
 namespace rr {
 class EnvironmentMap;
-class LatLongLayout;
 }  // namespace rr
 
 namespace rr::two_stage {
@@ -103,6 +104,10 @@ class TwoStageEstimator final : public DirectLightingEstimator {
     const EnvironmentMap* map_ = nullptr;
     const LatLongLayout* layout_ = nullptr;  // the map's (final: calls need no indirection)
     SummedAreaTable table_;
+    // The direction factors of the map's grid lines (height + 1 rows, width + 1 columns):
+    // stage 1 evaluates f at grid points, which then need no trigonometry.
+    std::vector<LatLongLayout::RowFactor> rowFactors_;
+    std::vector<LatLongLayout::ColumnFactor> columnFactors_;
 };
 
 }  // namespace rr::two_stage
