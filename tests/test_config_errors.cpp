@@ -139,6 +139,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"ris estimator with an unknown source",
                  {R"(/integrator={"type":"path_mis","estimator":{"type":"ris","source":"sky"}})"},
                  "/integrator/estimator/source"},
+        BadInput{"ris mixture source with an area light",
+                 {R"(/integrator={"type":"ris","mode":"fixed","source":"mixture"})"},
+                 "/integrator/source"},
+        BadInput{
+            "ris mixture estimator with an area light",
+            {R"(/integrator={"type":"path_mis","estimator":{"type":"ris","source":"mixture"}})"},
+            "/integrator/estimator/source"},
         BadInput{"unknown estimator",
                  {R"(/integrator={"type":"path_mis","estimator":{"type":"magic"}})"},
                  "/integrator/estimator/type"},

@@ -141,6 +141,7 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.sampler"] = std::string(samplerName(settings.sampler));
     a["renderer.threads"] = threads;
     a["renderer.renderTime"] = stats.seconds;
+    a["renderer.prepareTime"] = p.loaded.prepareSeconds;
     // The process's peak resident memory so far (scene, acceleration structure, film and the
     // integrator's working memory such as TAIS's maps), in MiB.
     rusage usage{};

@@ -27,6 +27,20 @@ Rgb traceShadowRay(const Scene& scene, const Ray& shadow, const Medium* medium, 
     }
 }
 
+// The density with which `guide` picks direction `w` at `vertex` from `reference`, over the
+// scene's infinite lights, and their radiance along it (ShadingPoint::infiniteLightPdf).
+template <PathGuide Guide>
+float infiniteLightPdf(const Guide& guide, uint32_t vertex, const Vec3& reference, const Vec3& w,
+                       Rgb* radiance) {
+    float pdf = 0;
+    *radiance = Rgb(0.0f);
+    for (const Light* light : guide.scene().infiniteLights()) {
+        pdf += guide.lightPdf(vertex, *light, reference, w);
+        *radiance += light->escapedRadiance(w);
+    }
+    return pdf;
+}
+
 // Where a vertex's estimate goes: the path's radiance, scaled by its throughput, and the
 // guide's credit.
 template <class Guide>
@@ -130,6 +144,9 @@ class SurfaceVertex final : public ShadingPoint {
             return light ? light->emitted(lightHit.geometricNormal, -wi) : Rgb(0.0f);
         }
     }
+    float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
+        return rr::infiniteLightPdf(out_.guide, out_.vertex, hit_.position, wi, radiance);
+    }
     void add(const Rgb& contribution) override { out_.add(contribution); }
 
   private:
@@ -193,6 +210,9 @@ class MediumVertex final : public ShadingPoint {
     Rgb incidentEmission(const Vec3&) override {
         // Refused at load (DirectLightingEstimator::worksInMedia).
         throw std::logic_error("incidentEmission at a point in a medium");
+    }
+    float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
+        return rr::infiniteLightPdf(out_.guide, out_.vertex, position_, wi, radiance);
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
 

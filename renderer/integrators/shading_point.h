@@ -69,6 +69,11 @@ class ShadingPoint {
     // sample directions rather than lights use it; surface points in scenes without media only
     // (DirectLightingEstimator::worksInMedia).
     virtual Rgb incidentEmission(const Vec3& wi) = 0;
+    // In a scene whose lights are all infinite (a direction is then the point on every light
+    // it sees): the density with which sampleLight() draws direction `wi`, summed over the
+    // lights, and their unoccluded radiance along it. For estimators that mix light samples
+    // with directions drawn otherwise (RIS's `mixture` source, which checks the scene).
+    virtual float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const = 0;
     // Adds one light sample's contribution to the radiance the integrator gathers, scaled by
     // what the path carries to this point (a technique's guide hears of it too: TAIS credits
     // its light maps with it).

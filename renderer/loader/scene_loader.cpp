@@ -1,5 +1,6 @@
 #include "loader/scene_loader.h"
 
+#include <chrono>
 #include <string>
 
 #include "config/type_table.h"
@@ -98,7 +99,10 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     loaded.scene = builder.build(render.lightSelection);
     if (loaded.scene->lights().empty())
         throw ConfigError("", "the scene has no light: add an emitter shape or a light");
+    const auto start = std::chrono::steady_clock::now();
     built.integrator->prepare(*loaded.scene);
+    loaded.prepareSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     loaded.integrator = std::move(built.integrator);
     loaded.schedule = std::move(built.schedule);
     loaded.render = render;

@@ -21,6 +21,10 @@ struct LoadedScene {
     std::unique_ptr<Integrator> integrator;
     ScheduleMaker schedule;  // how the integrator's samples are scheduled
     RenderSettings render;
+    // The integrator's preprocess over the built scene (Integrator::prepare, e.g. two-stage
+    // sampling's summed-area table), outside the timed render: reported so that comparisons
+    // can charge it.
+    double prepareSeconds = 0;
 };
 
 LoadedScene loadScene(const Json& document, const AssetResolver& assets);

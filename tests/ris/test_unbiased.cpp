@@ -2,9 +2,9 @@
 // every RIS scene at 32 × 32, the mean of RIS renders over independent seeds agrees with a
 // long render of the same light by another estimator, for the image mean and every 8 × 8
 // block mean of every channel, by z-tests with a Šidák-corrected family-wise level of 1 %.
-// Each source (light, the two hemispheres, the BSDF), fractional M and N (random rounding),
-// each M/N choice, and RIS at every vertex of path_mis. With M = 1 RIS is light sampling, bit
-// for bit; with given costs every mode is bit-identical for any thread count.
+// Each source (light, the two hemispheres, the BSDF, the light/BSDF mixture), fractional M and N
+// (random rounding), each M/N choice, and RIS at every vertex of path_mis. With M = 1 RIS is light
+// sampling, bit for bit; with given costs every mode is bit-identical for any thread count.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -65,6 +65,9 @@ const Case kCases[] = {
     {"cook_torrance_bsdf", "ris_fig5_cook_torrance_sphere.json",
      R"({"type":"ris","mode":"fixed","source":"bsdf","candidates":6.5,"samples":2})", kDirectMis, 4,
      64, 4096},
+    {"penumbrae_mixture", "twostage_fig10_penumbrae.json",
+     R"({"type":"ris","mode":"fixed","source":"mixture","candidates":2.5,"samples":1.5})",
+     kDirectMis, 4, 64, 2048},
 };
 constexpr int kCaseCount = sizeof(kCases) / sizeof(kCases[0]);
 

@@ -151,6 +151,10 @@ class FixedPoint final : public ShadingPoint {
         return true;
     }
     Rgb incidentEmission(const Vec3&) override { return Rgb(0.0f); }
+    float infiniteLightPdf(const Vec3&, Rgb* radiance) const override {
+        *radiance = Rgb(0.0f);
+        return 0;
+    }
     void add(const Rgb& contribution) override { sum_ += contribution; }
 
   private:

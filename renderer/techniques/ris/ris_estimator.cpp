@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "config/config_error.h"
 #include "sampling/warps.h"
+#include "scene/scene.h"
 #include "techniques/ris/reservoir.h"
 
 namespace rr::ris {
@@ -70,6 +72,8 @@ const char* sourceName(CandidateSource source) {
             return "cosine_hemisphere";
         case CandidateSource::Bsdf:
             return "bsdf";
+        case CandidateSource::Mixture:
+            return "mixture";
     }
     return "?";
 }
@@ -98,6 +102,16 @@ nlohmann::json RisEstimator::parameters() const {
             {"samples", counts_.n}};
 }
 
+void RisEstimator::prepare(const Scene& scene, const std::string& pointer) {
+    if (source_ != CandidateSource::Mixture) return;
+    for (const Light* light : scene.lights())
+        if (!light->isInfinite())
+            throw ConfigError(pointer + "/source",
+                              "source \"mixture\" needs the light-sampling density of BSDF "
+                              "directions, which it has for infinite lights only: light " +
+                                  std::to_string(light->index()) + " is not infinite");
+}
+
 uint32_t RisEstimator::lightSamples() const {
     return ceilCount(maxCounts_.n);
 }
@@ -118,6 +132,7 @@ bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t 
         c->target = (c->scattering * c->light.radiance).luminance();
         return true;
     }
+    if (source_ == CandidateSource::Mixture) return drawFromMixture(point, repeat, repeats, c);
     const Vec2 u = point.decide2D(Decision::CandidateDirection, repeat, repeats);
     const Frame* frame = point.frame();
     if (source_ == CandidateSource::Bsdf) {
@@ -135,6 +150,32 @@ bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t 
     }
     c->scattering = point.scattering(c->direction);
     c->target = c->scattering.luminance();
+    return true;
+}
+
+bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
+                                   Candidate* c) const {
+    // The lower half of the coordinate picks light sampling, the upper half the BSDF, and
+    // rescaled it is the BSDF's lobe coordinate.
+    const float u = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+    if (u < 0.5f) {
+        LightSample ls;
+        float pdf;
+        const Light* light;
+        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &pdf, &light)) return false;
+        c->direction = ls.direction;
+    } else {
+        float pdf;
+        const Vec2 uDirection = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+        if (!point.sampleScattering(2 * u - 1, uDirection, &c->direction, &pdf)) return false;
+    }
+    // The mixture's density counts both ways of drawing the direction.
+    Rgb le;
+    const float lightPdf = point.infiniteLightPdf(c->direction, &le);
+    c->pdf = 0.5f * (lightPdf + point.scatteringPdf(c->direction));
+    if (!(c->pdf > 0)) return false;
+    c->scattering = point.scattering(c->direction);
+    c->target = (c->scattering * le).luminance();
     return true;
 }
 

@@ -17,6 +17,12 @@
 //    (§5.2): a candidate is a direction; ĝ = luminance(Fs·|cos θ|); f adds the emission a ray in
 //    that direction finds. The hemispheres cover reflection only: transmissive materials need
 //    `bsdf`. Surfaces in scenes without media only.
+//  - source `mixture` (the two-stage paper's "RIS 2", Cline et al. 2006 §6): one-sample MIS's
+//    density, p = ½·(light sampling's density + the BSDF's) per direction; one coordinate picks
+//    the strategy of each candidate (structured samplers stratify it over the M candidates, so
+//    M = 2 draws about one of each). ĝ = luminance(Fs·|cos θ|·Le) unoccluded; f adds the
+//    emission a ray finds. Lights must all be infinite (a direction then names the light
+//    point, so p can be evaluated at a BSDF candidate); surfaces without media only.
 // Fractional M and N are rounded randomly per shading point (the ResampleCount decision), which
 // keeps the estimate unbiased. With M = 1 the estimator is light sampling exactly: the same
 // decisions and the same arithmetic as `light` with N light samples.
@@ -34,7 +40,8 @@ enum class CandidateSource : uint8_t {
     LightProxy,
     UniformHemisphere,
     CosineHemisphere,
-    Bsdf
+    Bsdf,
+    Mixture
 };
 
 const char* sourceName(CandidateSource source);
@@ -73,6 +80,8 @@ class RisEstimator final : public DirectLightingEstimator {
     FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
     uint32_t decisionRepeats() const override;
     bool worksInMedia() const override { return fromLights(); }
+    // `mixture` refuses a scene with lights that are not infinite.
+    void prepare(const Scene& scene, const std::string& pointer) override;
 
     void estimate(ShadingPoint& point) const override { estimate(point, counts_); }
     // With counts of the caller's (per pixel, as the `ris` integrator's optimal M and N), each
@@ -94,6 +103,8 @@ class RisEstimator final : public DirectLightingEstimator {
     }
     bool drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                        Candidate* candidate) const;
+    bool drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
+                         Candidate* candidate) const;
     // The candidate's contribution f·(1/density): visibility (or the emission found) decided.
     Rgb finish(ShadingPoint& point, const Candidate& candidate, float density) const;
 

@@ -10,11 +10,13 @@ constexpr double kMaxCount = 1024;
 
 CandidateSource readSource(ObjectReader& json) {
     const std::string source = json.getChoice(
-        "source", {"light", "light_proxy", "uniform_hemisphere", "cosine_hemisphere", "bsdf"},
+        "source",
+        {"light", "light_proxy", "uniform_hemisphere", "cosine_hemisphere", "bsdf", "mixture"},
         "light");
     if (source == "uniform_hemisphere") return CandidateSource::UniformHemisphere;
     if (source == "cosine_hemisphere") return CandidateSource::CosineHemisphere;
     if (source == "bsdf") return CandidateSource::Bsdf;
+    if (source == "mixture") return CandidateSource::Mixture;
     if (source == "light_proxy") return CandidateSource::LightProxy;
     return CandidateSource::Light;
 }
