@@ -33,21 +33,6 @@ def _by_n(doc: records.Results, technique: str, metric: str) -> dict[float, tupl
     return out
 
 
-def _prepare_seconds(doc: records.Results, technique: str) -> float | None:
-    """renderer.prepareTime of one of the technique's renders, if the renders are on disk."""
-    run = next((r for r in records.read_runs(doc) if r.technique == technique), None)
-    file = paths.ROOT / run.file if run else None
-    if file is None or not file.exists():
-        return None
-    import OpenImageIO as oiio
-    image = oiio.ImageInput.open(str(file))
-    if image is None:
-        return None
-    value = image.spec().getattribute("renderer.prepareTime")
-    image.close()
-    return None if value is None else float(value)
-
-
 def _line(ax, ns, series, x_of, **style) -> None:
     x = np.array([x_of(n) for n in ns])
     mean = np.array([series[n][1] for n in ns])
@@ -78,9 +63,8 @@ def write(profile_name: str) -> list[Path]:
     _line(by_time, ns, wais, lambda n: wais[n][0], color="C3", marker="x", ls=":",
           label="simulated WaIS at its own time (1024 splits charged)")
     _line(by_n, ns, wais, float, color="C3", marker="D", mfc="none", label="simulated WaIS")
-    prepare = _prepare_seconds(doc, "two_stage")
-    note = "" if prepare is None else f"; two-stage's table at load: {prepare * 1e3:.0f} ms"
-    by_time.set_xlabel(f"render time (s, 1 thread{note})")
+    threads = doc["provenance"]["threads_per_job"]
+    by_time.set_xlabel(f"render time (s, {threads} thread{'s' if threads > 1 else ''} per render)")
     by_n.set_xlabel("samples per pixel N")
     for ax in (by_time, by_n):
         ax.set_xscale("log")

@@ -129,6 +129,9 @@ class SurfaceVertex final : public ShadingPoint {
         *pdf = bs.pdf;
         return true;
     }
+    float sampleScatteringPdf(const Vec3& wi) const override {
+        return material_.pdf(ctx_, wo_, frame_.toLocal(wi));
+    }
     Rgb incidentEmission(const Vec3& wi) override {
         if constexpr (kMedia) {
             // Refused at load (DirectLightingEstimator::worksInMedia): transmittance to the
@@ -206,6 +209,9 @@ class MediumVertex final : public ShadingPoint {
     bool sampleScattering(float, const Vec2& u, Vec3* wi, float* pdf) const override {
         *pdf = medium_.phase().sample(wo_, u, wi);
         return *pdf > 0;
+    }
+    float sampleScatteringPdf(const Vec3& wi) const override {
+        return medium_.phase().pdf(wo_, wi);
     }
     Rgb incidentEmission(const Vec3&) override {
         // Refused at load (DirectLightingEstimator::worksInMedia).

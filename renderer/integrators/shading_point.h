@@ -64,6 +64,9 @@ class ShadingPoint {
     // function) with the given coordinates, and its density; false when none was drawn or the
     // draw is specular (no estimator that weighs directions can use it).
     virtual bool sampleScattering(float uLobe, const Vec2& u, Vec3* wi, float* pdf) const = 0;
+    // The density with which sampleScattering() draws wi (the material's or phase function's
+    // own, which a guide's scatteringPdf() need not be).
+    virtual float sampleScatteringPdf(const Vec3& wi) const = 0;
     // The emitted radiance arriving from direction `wi`: the area light a ray leaving the
     // point hits, or the infinite lights when it escapes (one extension ray). Estimators that
     // sample directions rather than lights use it; surface points in scenes without media only

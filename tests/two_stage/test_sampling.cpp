@@ -150,6 +150,10 @@ class FixedPoint final : public ShadingPoint {
         *pdf = bs.pdf;
         return true;
     }
+    float sampleScatteringPdf(const Vec3& wi) const override {
+        static const ShadingContext ctx{};
+        return material_ ? material_->pdf(ctx, woLocal_, frame_.toLocal(wi)) : 0.0f;
+    }
     Rgb incidentEmission(const Vec3&) override { return Rgb(0.0f); }
     float infiniteLightPdf(const Vec3&, Rgb* radiance) const override {
         *radiance = Rgb(0.0f);

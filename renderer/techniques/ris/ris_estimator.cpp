@@ -158,21 +158,23 @@ bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_
     // The lower half of the coordinate picks light sampling, the upper half the BSDF, and
     // rescaled it is the BSDF's lobe coordinate.
     const float u = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+    // Each draw's own density is not needed: the mixture's is evaluated below.
+    float drawPdf;
     if (u < 0.5f) {
         LightSample ls;
-        float pdf;
-        const Light* light;
-        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &pdf, &light)) return false;
+        const Light* drawnLight;
+        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &drawPdf, &drawnLight))
+            return false;
         c->direction = ls.direction;
     } else {
-        float pdf;
         const Vec2 uDirection = point.decide2D(Decision::CandidateDirection, repeat, repeats);
-        if (!point.sampleScattering(2 * u - 1, uDirection, &c->direction, &pdf)) return false;
+        if (!point.sampleScattering(2 * u - 1, uDirection, &c->direction, &drawPdf)) return false;
     }
-    // The mixture's density counts both ways of drawing the direction.
+    // The mixture's density counts both ways of drawing the direction, each by the density of
+    // the sampler that drew it (sampleScatteringPdf: not a guide's scatteringPdf).
     Rgb le;
     const float lightPdf = point.infiniteLightPdf(c->direction, &le);
-    c->pdf = 0.5f * (lightPdf + point.scatteringPdf(c->direction));
+    c->pdf = 0.5f * (lightPdf + point.sampleScatteringPdf(c->direction));
     if (!(c->pdf > 0)) return false;
     c->scattering = point.scattering(c->direction);
     c->target = (c->scattering * le).luminance();
