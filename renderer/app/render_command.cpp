@@ -112,8 +112,8 @@ PreparedRender prepare(const RenderCommandOptions& o) {
     p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
     const RenderSettings& settings = p.loaded.render;
     p.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
-    p.schedule = p.loaded.schedule(
-        ScheduleInputs{*p.loaded.scene, settings.width, settings.height, p.spp, o.timeLimit});
+    p.schedule = p.loaded.schedule(ScheduleInputs{*p.loaded.scene, settings.width, settings.height,
+                                                  p.spp, o.timeLimit, settings.seed});
     if (o.timeLimit > 0 && !p.schedule->supportsTimeLimit())
         throw ConfigError("/integrator/type",
                           p.loaded.integrator->name() +
@@ -154,7 +154,8 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.nonFiniteSamples"] = static_cast<double>(stats.nonFiniteSamples);
     a["renderer.interrupted"] = stats.interrupted ? 1 : 0;
     std::string channels =
-        "R,G,B: mean radiance; variance.R,variance.G,variance.B: variance of the pixel mean; "
+        "R,G,B: pixel estimate of radiance; variance.R,variance.G,variance.B: variance of the "
+        "mean of the pixel's samples; "
         "samples: samples in the pixel";
     for (AuxiliaryChannel& channel : p.loaded.integrator->auxiliaryChannels()) {
         channels += "; " + channel.name + ": " + channel.description;
@@ -260,7 +261,7 @@ int runRenderCommand(const RenderCommandOptions& o) {
             bar.finish("interrupted before a complete image; nothing written");
             return 130;
         }
-        ExrImage image = filmToExr(film);
+        ExrImage image = filmToExr(film, p.loaded.integrator->pixelEstimates());
         addMetadata(o, p, stats, threads, &image);
         writeOutputs(o, p.out, image);
     } catch (const std::exception& e) {

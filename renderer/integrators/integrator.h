@@ -58,6 +58,9 @@ class Integrator {
     virtual void prepare(const Scene& /*scene*/) {}
     // Channels besides radiance, once the render is done.
     virtual std::vector<AuxiliaryChannel> auxiliaryChannels() const { return {}; }
+    // Once the render is done: the pixel estimates (row-major) when they are not the means of
+    // the film's samples, as for PMC-IP, which weights each iteration's samples; else empty.
+    virtual std::vector<Rgb> pixelEstimates() const { return {}; }
 };
 
 class SampleIntegrator : public Integrator {

@@ -8,12 +8,9 @@
 #include <optional>
 
 #include "metrics/input_images.h"
+#include "metrics/tvi.h"
 
 namespace rr {
-
-// The tvi error needs absolute luminance: by default pixel value 1 is displayed as a
-// 100 cd/m² white.
-inline constexpr double kDefaultCdPerUnit = 100;
 
 struct CompareOptions {
     double relmseRejectFraction = 0;  // in [0, 0.5): share of pixels dropped from relMSE

@@ -5,6 +5,10 @@
 
 namespace rr {
 
+// The tvi error needs absolute luminance: by default pixel value 1 is displayed as a
+// 100 cd/m² white (the metrics tool's default; PMC-IP adapts on the same scale).
+inline constexpr double kDefaultCdPerUnit = 100;
+
 // Cone (photopic) threshold; the one the tvi error of Lai et al. 2007 uses.
 double photopicTvi(double adaptingLuminance);
 // Rod (scotopic) threshold, for completeness; no metric uses it.

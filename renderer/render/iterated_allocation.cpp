@@ -6,12 +6,14 @@
 namespace rr {
 
 IteratedAllocation::IteratedAllocation(const Scene& scene, const SampleIntegrator& integrator,
-                                       int width, int height, double timeLimit, Allocation allocate)
+                                       int width, int height, double timeLimit, Allocation allocate,
+                                       Observer observe)
     : scene_(scene),
       integrator_(integrator),
       grid_(width, height),
       timeLimit_(timeLimit),
       allocate_(std::move(allocate)),
+      observe_(std::move(observe)),
       counts_(size_t(width) * height),
       first_(size_t(width) * height) {}
 
@@ -37,7 +39,36 @@ void IteratedAllocation::unitVisits(size_t unit, std::vector<PixelVisit>* visits
     });
 }
 
+namespace {
+
+// The sample loop, then the observer on the visit's values.
+class ObservedSampleLoop final : public PixelRenderer {
+  public:
+    ObservedSampleLoop(const Scene& scene, const SampleIntegrator& integrator,
+                       const Sampler& sampler, int width,
+                       const IteratedAllocation::Observer& observe)
+        : loop_(scene, integrator, sampler, width), observe_(observe) {}
+
+    void render(const PixelVisit& visit, PixelWork& work) override {
+        loop_.render(visit, work);
+        finite_.clear();
+        for (const Rgb& value : work.values)
+            finite_.push_back(value.isFinite() ? value : Rgb(0.0f));
+        observe_(visit, finite_);
+    }
+
+  private:
+    SampleLoop loop_;
+    const IteratedAllocation::Observer& observe_;
+    std::vector<Rgb> finite_;
+};
+
+}  // namespace
+
 std::unique_ptr<PixelRenderer> IteratedAllocation::pixelRenderer(const Sampler& sampler) const {
+    if (observe_)
+        return std::make_unique<ObservedSampleLoop>(scene_, integrator_, sampler, grid_.width(),
+                                                    observe_);
     return std::make_unique<SampleLoop>(scene_, integrator_, sampler, grid_.width());
 }
 

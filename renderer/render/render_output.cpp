@@ -1,8 +1,10 @@
 #include "render/render_output.h"
 
+#include <stdexcept>
+
 namespace rr {
 
-ExrImage filmToExr(const Film& film) {
+ExrImage filmToExr(const Film& film, const std::vector<Rgb>& estimates) {
     ExrImage image;
     image.width = film.width();
     image.height = film.height();
@@ -15,10 +17,13 @@ ExrImage filmToExr(const Film& film) {
     float *r = channel("R"), *g = channel("G"), *b = channel("B");
     float *vr = channel("variance.R"), *vg = channel("variance.G"), *vb = channel("variance.B");
     float* samples = channel("samples");
+    if (!estimates.empty() && estimates.size() != n)
+        throw std::logic_error("pixel estimates must give one value per pixel");
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             const size_t i = size_t(y) * image.width + x;
-            const Rgb m = film.mean(x, y), v = film.varianceOfMean(x, y);
+            const Rgb m = estimates.empty() ? film.mean(x, y) : estimates[i];
+            const Rgb v = film.varianceOfMean(x, y);
             r[i] = m.r;
             g[i] = m.g;
             b[i] = m.b;

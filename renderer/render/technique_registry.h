@@ -25,6 +25,7 @@ struct ScheduleInputs {
     int width = 0, height = 0;
     uint32_t spp = 0;  // with a time limit, an upper bound
     double timeLimit = 0;
+    uint32_t seed = 0;  // the render's seed, for decisions a schedule draws itself
 };
 using ScheduleMaker = std::function<std::unique_ptr<RenderSchedule>(const ScheduleInputs&)>;
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +63,10 @@ double sidakAlpha(double alpha, int tests) {
 
 double zThreshold(double alpha) {
     return boost::math::quantile(boost::math::normal(), 1.0 - alpha / 2.0);
+}
+
+double tThreshold(double alpha, int dof) {
+    return boost::math::quantile(boost::math::students_t(dof), 1.0 - alpha / 2.0);
 }
 
 namespace {

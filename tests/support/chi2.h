@@ -28,6 +28,9 @@ double sidakAlpha(double alpha, int tests);
 
 // Two-sided z-test threshold |z| for significance `alpha`.
 double zThreshold(double alpha);
+// Two-sided t-test threshold |t| for significance `alpha` with `dof` degrees of freedom (a mean
+// whose standard error comes from the spread of dof + 1 independent values).
+double tThreshold(double alpha, int dof);
 
 // The χ² runs of one test program, Šidák-corrected to family-wise level `familyAlpha`.
 // Outcomes are printed, so the p-values of passing runs are visible in the test log.

@@ -27,7 +27,7 @@ TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, in
     options.sampler = scene.render.sampler;
     options.samplerSetSize = spp;
     const std::unique_ptr<RenderSchedule> schedule = scene.schedule(
-        ScheduleInputs{*scene.scene, scene.render.width, scene.render.height, spp, 0});
+        ScheduleInputs{*scene.scene, scene.render.width, scene.render.height, spp, 0, seed});
     r.stats = render(*schedule, options, r.film);
     return r;
 }

@@ -1,0 +1,31 @@
+// PMC-IP's image-plane kernel (Lai et al. 2007 §4): a mixture over pixels,
+// K(x) = Σ α_ij h_ij(x), h_ij uniform over pixel (i, j). Two steps per iteration, each a pure
+// function of the image so far so that they can be tested alone:
+//  - the adaptation (§4.2), α from each pixel's sample variance against the threshold of
+//    visibility at its brightness;
+//  - deterministic mixture sampling (§4.3), α into whole sample counts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace rr::pmc {
+
+// §4.2, read as α_ij = ε/|P| + (1 − ε) α'_ij / Σ α' with α'_ij = σ²_ij / tvi(L_ij) (the printed
+// α = ε + (1 − ε)α'/Σα' does not sum to one; README.md, reading 1). σ² is the per-sample
+// variance of the pixel's luminance and L its mean luminance, both taken to cd/m² by
+// `cdPerUnit`, the metrics tool's display scale, so the adaptation minimises the error the
+// tables report. When every α' is zero (a flat image), α is uniform.
+std::vector<double> mixtureWeights(const std::vector<double>& sampleVariance,
+                                   const std::vector<double>& meanLuminance, double epsilon,
+                                   double cdPerUnit);
+
+// §4.3: pixel k gets ⌊N α_k⌋ samples, and the N − Σ⌊N α⌋ left over go to pixels with
+// probability proportional to their fractional parts, by systematic sampling (one offset
+// `u` ∈ [0, 1), stride 1 over the fractional parts laid end to end), so each pixel gets
+// ⌊N α_k⌋ or ⌈N α_k⌉ samples and E[n_k] = N α_k exactly (the paper does not say which residual
+// scheme; README.md, reading 5). Returns the counts into *counts.
+void mixtureCounts(const std::vector<double>& alpha, uint64_t total, double u,
+                   std::vector<uint32_t>* counts);
+
+}  // namespace rr::pmc

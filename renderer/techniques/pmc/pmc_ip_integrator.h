@@ -1,0 +1,82 @@
+// `pmc_ip`: population Monte Carlo on the image plane (Lai et al. 2007 §4). Any integrator
+// whose pixel samples are independent (path, path_mis, direct, ris, …) renders the samples; this
+// one decides how many each pixel gets:
+//  - iteration 0: a uniform image of `initial_spp` samples per pixel;
+//  - iteration t ≥ 1: N = |P| × `iteration_spp` samples spread by the mixture kernel, α from
+//    the image so far (§4.2) and counts by deterministic mixture sampling (§4.3);
+//    mixture_allocation.h has both steps;
+//  - until the render's spp (initial_spp + k × iteration_spp) or its time limit is reached.
+// Each pixel's sample indices continue across iterations, so its samples keep their
+// stratification (render/iterated_allocation.h). The adaptation runs between iterations inside
+// the timed render, so times and P-Eff charge it.
+//
+// The image. A pixel can get no sample in an iteration, so the paper's "average of the
+// sub-images" needs a per-iteration estimate defined for every pixel: Σ L / (N α_ij), the sum
+// of the pixel's samples over its expected count (E[n_ij] = N α_ij, and α depends only on
+// earlier iterations), which is unbiased; the image is the unweighted mean of the iterations'
+// estimates, the initial one included (`image`: "iterations", the default). `image`: "pooled"
+// takes the mean of all the pixel's samples instead, which is slightly biased because how many
+// samples a pixel gets depends on the values of its earlier ones (README.md, reading 4).
+//
+// Channels besides radiance: pmc.alpha, |P|·α of the last iteration (1 = a uniform share; the
+// α image of fig. 4), and pmc.variance, the per-sample luminance variance it came from.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "render/technique_registry.h"
+
+namespace rr::pmc {
+
+enum class ImageEstimate : uint8_t { Iterations, Pooled };
+
+struct PmcIpSettings {
+    uint32_t initialSpp = 2;    // the uniform initial image; at least 2 for a variance
+    uint32_t iterationSpp = 4;  // N = |P| × this per adaptive iteration
+    double epsilon = 0.01;      // the defensive uniform share of α (§4.2)
+    ImageEstimate image = ImageEstimate::Iterations;
+};
+
+class PmcIpIntegrator final : public Integrator {
+  public:
+    PmcIpIntegrator(std::unique_ptr<SampleIntegrator> pixelIntegrator,
+                    const PmcIpSettings& settings);
+
+    std::string name() const override { return "pmc_ip"; }
+    nlohmann::json parameters() const override;
+    uint32_t decisionRepeats() const override { return pixelIntegrator_->decisionRepeats(); }
+    void prepare(const Scene& scene) override { pixelIntegrator_->prepare(scene); }
+    std::vector<AuxiliaryChannel> auxiliaryChannels() const override;
+    std::vector<Rgb> pixelEstimates() const override;
+
+    std::unique_ptr<RenderSchedule> schedule(const ScheduleInputs& inputs);
+
+  private:
+    // What the adaptation and the image need of a pixel, gathered from its samples as they are
+    // rendered (by the one unit that renders the pixel in an iteration).
+    struct PixelState {
+        double luminanceSum = 0, luminanceSquares = 0;
+        uint32_t samples = 0;
+        double rgbSum[3] = {0, 0, 0};
+        double estimateSum[3] = {0, 0, 0};  // Σ over iterations of Σ L / (N α)
+    };
+
+    bool allocate(int iteration, std::vector<uint32_t>* counts);
+    void adapt(std::vector<uint32_t>* counts);
+    void observe(const PixelVisit& visit, const std::vector<Rgb>& values);
+
+    std::unique_ptr<SampleIntegrator> pixelIntegrator_;
+    PmcIpSettings settings_;
+    int width_ = 0;
+    uint32_t seed_ = 0;
+    int maxIterations_ = 0;   // adaptive iterations the spp allows
+    int iterationsDone_ = 0;  // the initial one included
+    double adaptSeconds_ = 0;
+    std::vector<PixelState> pixels_;
+    std::vector<double> alpha_;
+    std::vector<double> sampleWeight_;  // this iteration's 1 / (N α) per pixel
+    std::vector<double> variance_;      // the per-sample luminance variance α last came from
+};
+
+}  // namespace rr::pmc

@@ -1,0 +1,52 @@
+// The `pmc_ip` integrator as scenes name it (configs/README.md).
+#include "config/json_reader.h"
+#include "render/technique_registry.h"
+#include "techniques/pmc/pmc_ip_integrator.h"
+
+namespace rr::pmc {
+
+namespace {
+
+// "integrator": the integrator that renders the pixel samples; its samples must be
+// independent, for PMC-IP chooses how many each pixel gets.
+std::unique_ptr<SampleIntegrator> readPixelIntegrator(ObjectReader& json,
+                                                      const IntegratorContext& context) {
+    ObjectReader inner(json.raw("integrator"), json.pointerTo("integrator"));
+    BuiltIntegrator built = context.registry.makeIntegrator(inner, context.path);
+    auto* samples = dynamic_cast<SampleIntegrator*>(built.integrator.get());
+    if (!samples)
+        json.fail("integrator", built.integrator->name() +
+                                    " chooses its own samples per pixel; pmc_ip needs an "
+                                    "integrator whose pixel samples are independent");
+    // two_stage's variable allocations are sample integrators with a schedule of their own,
+    // which pmc_ip would replace.
+    const nlohmann::json parameters = samples->parameters();
+    if (parameters.value("allocation", "fixed") != "fixed")
+        json.fail("integrator", "pmc_ip chooses the samples per pixel; give " +
+                                    built.integrator->name() + " a fixed allocation");
+    built.integrator.release();
+    return std::unique_ptr<SampleIntegrator>(samples);
+}
+
+BuiltIntegrator makePmcIp(ObjectReader& json, const IntegratorContext& context) {
+    PmcIpSettings s;
+    s.initialSpp = static_cast<uint32_t>(json.getInt("initial_spp", 2, Range::closed(2, 1 << 16)));
+    s.iterationSpp =
+        static_cast<uint32_t>(json.getInt("iteration_spp", 4, Range::closed(1, 1 << 16)));
+    s.epsilon = json.getNumber("epsilon", 0.01, Range::open(0, 1));
+    s.image = json.getChoice("image", {"iterations", "pooled"}, "iterations") == "pooled"
+                  ? ImageEstimate::Pooled
+                  : ImageEstimate::Iterations;
+    auto integrator = std::make_unique<PmcIpIntegrator>(readPixelIntegrator(json, context), s);
+    PmcIpIntegrator* raw = integrator.get();
+    return BuiltIntegrator{std::move(integrator),
+                           [raw](const ScheduleInputs& in) { return raw->schedule(in); }};
+}
+
+}  // namespace
+
+void registerTechnique(TechniqueRegistry& registry) {
+    registry.addIntegrator("pmc_ip", makePmcIp, /*rendersMedia=*/false);
+}
+
+}  // namespace rr::pmc

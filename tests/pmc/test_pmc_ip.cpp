@@ -1,0 +1,222 @@
+// PMC-IP (Lai et al. 2007 §4): the adaptation's α, deterministic mixture sampling's counts, the
+// unbiasedness of the iterations' image, determinism for any thread count, and bad settings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "config/config_error.h"
+#include "metrics/tvi.h"
+#include "support/chi2.h"
+#include "support/scene_testing.h"
+#include "techniques/pmc/mixture_allocation.h"
+
+namespace rr::test {
+namespace {
+
+using pmc::mixtureCounts;
+using pmc::mixtureWeights;
+
+// α sums to one, never falls below ε/|P|, and above that floor is proportional to σ²/tvi(L).
+TEST(PmcIpAdaptation, WeightsAreTheDefensiveMixtureOfVarianceOverTvi) {
+    const std::vector<double> variance = {0.0, 0.01, 0.04, 0.01, 0.0};
+    const std::vector<double> luminance = {0.5, 0.5, 0.5, 0.05, 2.0};
+    const double epsilon = 0.01, scale = kDefaultCdPerUnit;
+    const std::vector<double> alpha = mixtureWeights(variance, luminance, epsilon, scale);
+    EXPECT_NEAR(std::accumulate(alpha.begin(), alpha.end(), 0.0), 1.0, 1e-12);
+    const double floor = epsilon / 5;
+    EXPECT_DOUBLE_EQ(alpha[0], floor);
+    EXPECT_DOUBLE_EQ(alpha[4], floor);
+    // Same luminance: the shares above the floor go as the variances.
+    EXPECT_NEAR((alpha[2] - floor) / (alpha[1] - floor), 4.0, 1e-9);
+    // Same variance, darker pixel: larger by the ratio of the thresholds.
+    const double tviRatio = photopicTvi(0.5 * scale) / photopicTvi(0.05 * scale);
+    EXPECT_NEAR((alpha[3] - floor) / (alpha[1] - floor), tviRatio, 1e-9);
+    EXPECT_GT(tviRatio, 1.0);
+}
+
+TEST(PmcIpAdaptation, AFlatImageGetsUniformWeights) {
+    const std::vector<double> alpha = mixtureWeights({0, 0, 0, 0}, {1, 0, 2, 3}, 0.01, 100);
+    for (double a : alpha)
+        EXPECT_DOUBLE_EQ(a, 0.25);
+}
+
+// Each pixel gets ⌊Nα⌋ or ⌈Nα⌉ samples, N in all, and over offsets u spread evenly on [0, 1)
+// the mean count is Nα (the expectation DMS promises, here exactly up to the offsets' grid).
+TEST(PmcIpAllocation, CountsAreFloorOrCeilingWithExpectationNAlpha) {
+    std::vector<double> alpha(97);
+    for (size_t k = 0; k < alpha.size(); ++k)
+        alpha[k] = 1.0 + std::sin(double(k)) * 0.9 + (k % 7 == 0 ? 5.0 : 0.0);
+    const double sum = std::accumulate(alpha.begin(), alpha.end(), 0.0);
+    for (double& a : alpha)
+        a /= sum;
+    const uint64_t total = 97 * 4 + 3;
+    constexpr int kOffsets = 4096;
+    std::vector<double> meanCount(alpha.size(), 0.0);
+    std::vector<uint32_t> counts;
+    for (int i = 0; i < kOffsets; ++i) {
+        mixtureCounts(alpha, total, (i + 0.5) / kOffsets, &counts);
+        uint64_t drawn = 0;
+        for (size_t k = 0; k < alpha.size(); ++k) {
+            const double expected = double(total) * alpha[k];
+            ASSERT_GE(counts[k], std::floor(expected)) << k;
+            ASSERT_LE(counts[k], std::ceil(expected)) << k;
+            drawn += counts[k];
+            meanCount[k] += double(counts[k]) / kOffsets;
+        }
+        ASSERT_EQ(drawn, total) << "offset " << i;
+    }
+    for (size_t k = 0; k < alpha.size(); ++k)
+        EXPECT_NEAR(meanCount[k], double(total) * alpha[k], 1.0 / kOffsets) << k;
+}
+
+constexpr const char* kScene = "pmc_fig6_checker_floor.json";
+constexpr int kSize = 32, kBlock = 8;
+constexpr uint32_t kSeeds = 1024;
+
+std::string pmcIp(const std::string& image) {
+    return R"(/integrator={"type":"pmc_ip","initial_spp":2,"iteration_spp":4,"image":")" + image +
+           R"(","integrator":{"type":"direct","strategy":"mis","light_samples":1,"bsdf_samples":1}})";
+}
+
+LoadedScene checkerFloor(const std::vector<std::string>& extra) {
+    std::vector<std::string> overrides = {"/render/resolution=[32,32]"};
+    overrides.insert(overrides.end(), extra.begin(), extra.end());
+    return loadSceneFile(kScene, overrides);
+}
+
+// Mean of channel c over a block of a row-major image.
+double blockMean(const std::vector<Rgb>& image, int c, int x0, int y0, int x1, int y1) {
+    double sum = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            sum += image[size_t(y) * kSize + x][c];
+    return sum / double((x1 - x0) * (y1 - y0));
+}
+
+// The iterations' images of kSeeds renders against a long uniform render, for the image mean
+// and each 8 × 8 block mean of each channel: the standard error of the renders' mean comes from
+// their spread over seeds (a t statistic with kSeeds − 1 degrees of freedom), the reference's
+// from its pixel variances. Returns the largest |t| and where.
+double largestT(const LoadedScene& scene, uint32_t spp, std::string* where) {
+    const TestRender reference = renderScene(
+        checkerFloor({R"(/integrator={"type":"direct","strategy":"mis"})"}), 16384, 1000);
+    std::vector<std::vector<Rgb>> images;
+    for (uint32_t seed = 1; seed <= kSeeds; ++seed) {
+        renderScene(scene, spp, seed);
+        images.push_back(scene.integrator->pixelEstimates());
+        EXPECT_EQ(images.back().size(), size_t(kSize * kSize));
+    }
+    struct Block {
+        int x0, y0, x1, y1;
+    };
+    std::vector<Block> blocks{{0, 0, kSize, kSize}};
+    for (int y = 0; y < kSize; y += kBlock)
+        for (int x = 0; x < kSize; x += kBlock)
+            blocks.push_back({x, y, x + kBlock, y + kBlock});
+    double worst = 0;
+    for (const Block& b : blocks)
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0, squares = 0;
+            for (const auto& image : images) {
+                const double m = blockMean(image, c, b.x0, b.y0, b.x1, b.y1);
+                sum += m;
+                squares += m * m;
+            }
+            const double n = kSeeds, mean = sum / n;
+            const double variance = (squares - n * mean * mean) / (n - 1);
+            const Estimate r = regionMean(reference.film, c, b.x0, b.y0, b.x1, b.y1);
+            const double t = std::abs(mean - r.mean) /
+                             std::sqrt(variance / n + r.standardError * r.standardError);
+            if (t <= worst) continue;
+            worst = t;
+            *where = "channel " + std::to_string(c) + " block at (" + std::to_string(b.x0) + ", " +
+                     std::to_string(b.y0) + "): " + std::to_string(mean) + " against " +
+                     std::to_string(r.mean);
+        }
+    return worst;
+}
+
+int tests() {
+    return 3 * (1 + (kSize / kBlock) * (kSize / kBlock));
+}
+
+double threshold() {
+    // The case and its negative control.
+    return tThreshold(sidakAlpha(0.01, 2 * tests()), int(kSeeds) - 1);
+}
+
+// Unbiased: the mean over seeds of the iterations' image (2 + 4 + 4 spp) matches a long
+// uniform render.
+TEST(PmcIpUnbiased, TheIterationsImageMatchesALongUniformRender) {
+    std::string where;
+    const double t = largestT(checkerFloor({pmcIp("iterations")}), 10, &where);
+    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", t, threshold(), where.c_str());
+    EXPECT_LT(t, threshold()) << where;
+}
+
+// The test's power: with a floor 2.5 % darker (both kinds of square) the same comparison must
+// fail.
+TEST(PmcIpUnbiased, NegativeControlDarkerSquaresAreRejected) {
+    std::string where;
+    const double t =
+        largestT(checkerFloor({pmcIp("iterations"), "/materials/diffuse/albedo=0.53625",
+                               "/materials/glossy/reflectance=0.975"}),
+                 10, &where);
+    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", t, threshold(), where.c_str());
+    EXPECT_GT(t, threshold()) << where;
+}
+
+// The allocation depends on the film only, never on threads: the same pixels, bit for bit.
+TEST(PmcIpDeterminism, ImagesAndCountsAreIdenticalOnOneAndTwoThreads) {
+    const LoadedScene scene = checkerFloor({pmcIp("iterations")});
+    const TestRender one = renderScene(scene, 14, 7, 1);
+    const std::vector<Rgb> a = scene.integrator->pixelEstimates();
+    const TestRender two = renderScene(scene, 14, 7, 2);
+    const std::vector<Rgb> b = scene.integrator->pixelEstimates();
+    int varied = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const size_t k = size_t(y) * kSize + x;
+            ASSERT_EQ(one.film.sampleCount(x, y), two.film.sampleCount(x, y));
+            ASSERT_EQ(a[k], b[k]) << x << ", " << y;
+            varied += one.film.sampleCount(x, y) != 14;
+        }
+    EXPECT_GT(varied, kSize * kSize / 4) << "the allocation should vary between pixels";
+}
+
+// 2 initial samples and iterations of 4 cannot make 11 spp; the error names the setting.
+TEST(PmcIpSettings, AnSppThatIsNoWholeNumberOfIterationsIsRefused) {
+    const LoadedScene scene = checkerFloor({pmcIp("iterations")});
+    try {
+        renderScene(scene, 11, 1);
+        FAIL() << "11 spp was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/render/spp");
+    }
+}
+
+TEST(PmcIpSettings, AnIntegratorThatSchedulesItsOwnSamplesIsRefused) {
+    try {
+        checkerFloor({R"(/integrator={"type":"pmc_ip","integrator":{"type":"tais"}})"});
+        FAIL() << "pmc_ip over tais was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/integrator/integrator");
+    }
+}
+
+TEST(PmcIpSettings, OneInitialSampleGivesNoVarianceAndIsRefused) {
+    try {
+        checkerFloor(
+            {R"(/integrator={"type":"pmc_ip","initial_spp":1,"integrator":{"type":"direct"}})"});
+        FAIL() << "initial_spp 1 was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/integrator/initial_spp");
+    }
+}
+
+}  // namespace
+}  // namespace rr::test
