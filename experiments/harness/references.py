@@ -6,6 +6,7 @@ when that noise is not below a fifth of the smallest error measured against the 
 import datetime
 import hashlib
 import json
+import shutil
 import tempfile
 import time
 from pathlib import Path
@@ -73,8 +74,39 @@ def lookup(exp: Experiment, profile: Profile) -> tuple[dict[str, Any], Path]:
     return entry, paths.REFERENCE / entry["file"]
 
 
-def render_reference(exp: Experiment, profile: Profile) -> None:
-    """Renders the two halves with all cores, merges them, records the manifest entry."""
+def _same_key_entry(manifest: Manifest, wanted: str) -> tuple[str, dict[str, Any]] | None:
+    """A current reference of another experiment with the same key: the same scene document,
+    integrator, resolution and spp, rendered with the same fixed seeds, so the same image."""
+    for name, entry in manifest.items():
+        file = paths.REFERENCE / entry["file"]
+        if (entry["key"] == wanted and file.exists()
+                and entry["sha256"] == provenance.sha256_file(file)):
+            return name, entry
+    return None
+
+
+def _copy_reference(exp: Experiment, profile: Profile, source: str, entry: dict[str, Any],
+                    manifest: Manifest) -> None:
+    out = paths.REFERENCE / file_name(exp, profile)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    scratch = out.with_name(f".{out.name}.copying")
+    shutil.copyfile(paths.REFERENCE / entry["file"], scratch)
+    scratch.replace(out)
+    manifest[entry_name(exp, profile)] = {**entry, "file": str(file_name(exp, profile)),
+                                          "copied_from": source}
+    save_manifest(manifest)
+    print(f"[references] {entry_name(exp, profile)}: the same image as {source}, copied",
+          flush=True)
+
+
+def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> None:
+    """Renders the two halves with all cores, merges them, records the manifest entry; or, with
+    `reuse`, copies a current reference with the same key."""
+    manifest = load_manifest()
+    same = _same_key_entry(manifest, key(exp, profile)) if reuse else None
+    if same is not None:
+        _copy_reference(exp, profile, *same, manifest)
+        return
     out = paths.REFERENCE / file_name(exp, profile)
     out.parent.mkdir(parents=True, exist_ok=True)
     half_spp = profile.reference_spp // 2
@@ -118,7 +150,8 @@ def ensure(experiments: list[Experiment], profile_name: str, force: bool = False
     for exp in experiments:
         profile = exp.profiles[profile_name]
         if force or status(exp, profile) != "ok":
-            render_reference(exp, profile)
+            # Forced (after a code change), a reference is rendered afresh, not copied.
+            render_reference(exp, profile, reuse=not force)
 
 
 def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any], smallest_rmse: float,

@@ -43,6 +43,12 @@ struct AuxiliaryChannel {
     std::vector<float> values;
 };
 
+// Pixel values and the variance of each, row-major, one per pixel (empty: none).
+struct PixelEstimates {
+    std::vector<Rgb> values;
+    std::vector<Rgb> variances;
+};
+
 class Integrator {
   public:
     virtual ~Integrator() = default;
@@ -58,9 +64,9 @@ class Integrator {
     virtual void prepare(const Scene& /*scene*/) {}
     // Channels besides radiance, once the render is done.
     virtual std::vector<AuxiliaryChannel> auxiliaryChannels() const { return {}; }
-    // Once the render is done: the pixel estimates (row-major) when they are not the means of
-    // the film's samples, as for PMC-IP, which weights each iteration's samples; else empty.
-    virtual std::vector<Rgb> pixelEstimates() const { return {}; }
+    // Once the render is done: the pixel estimates when they are not the means of the film's
+    // samples (PMC-IP weights each iteration's samples); else empty.
+    virtual PixelEstimates pixelEstimates() const { return {}; }
 };
 
 class SampleIntegrator : public Integrator {

@@ -132,7 +132,8 @@ class SurfaceVertex final : public ShadingPoint {
     float sampleScatteringPdf(const Vec3& wi) const override {
         return material_.pdf(ctx_, wo_, frame_.toLocal(wi));
     }
-    Rgb incidentEmission(const Vec3& wi) override {
+    using ShadingPoint::incidentEmission;
+    Rgb incidentEmission(const Vec3& wi, EmissionSource* source) override {
         if constexpr (kMedia) {
             // Refused at load (DirectLightingEstimator::worksInMedia): transmittance to the
             // emitter would need the medium walk.
@@ -141,11 +142,20 @@ class SurfaceVertex final : public ShadingPoint {
             ++out_.rays.extension;
             const Scene& scene = out_.guide.scene();
             SurfaceHit lightHit;
-            if (!scene.intersect(hit_.spawn(wi), &lightHit))
+            *source = EmissionSource{};
+            if (!scene.intersect(hit_.spawn(wi), &lightHit)) {
+                source->escaped = true;
                 return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
+            }
             const AreaLight* light = lightHit.shape->areaLight();
-            return light ? light->emitted(lightHit.geometricNormal, -wi) : Rgb(0.0f);
+            if (!light) return Rgb(0.0f);
+            source->areaLight = light;
+            source->areaLightPdf = light->pdf(hit_.position, lightHit);
+            return light->emitted(lightHit.geometricNormal, -wi);
         }
+    }
+    bool sampleLightOf(const Light& light, const Vec2& u, LightSample* ls) const override {
+        return light.sample(hit_.position, u, hit_.time, ls);
     }
     float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
         return rr::infiniteLightPdf(out_.guide, out_.vertex, hit_.position, wi, radiance);
@@ -213,9 +223,13 @@ class MediumVertex final : public ShadingPoint {
     float sampleScatteringPdf(const Vec3& wi) const override {
         return medium_.phase().pdf(wo_, wi);
     }
-    Rgb incidentEmission(const Vec3&) override {
+    using ShadingPoint::incidentEmission;
+    Rgb incidentEmission(const Vec3&, EmissionSource*) override {
         // Refused at load (DirectLightingEstimator::worksInMedia).
         throw std::logic_error("incidentEmission at a point in a medium");
+    }
+    bool sampleLightOf(const Light& light, const Vec2& u, LightSample* ls) const override {
+        return light.sample(position_, u, time_, ls);
     }
     float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
         return rr::infiniteLightPdf(out_.guide, out_.vertex, position_, wi, radiance);

@@ -24,6 +24,15 @@ struct ScatteringShape {
     LobePeaks peaks;
 };
 
+// Where the emission along a direction comes from (ShadingPoint::incidentEmission): the area
+// light the ray hit and the solid-angle density with which that light's own sampler picks the
+// point (Light::pdf), or that the ray escaped to the infinite lights, or neither.
+struct EmissionSource {
+    const Light* areaLight = nullptr;
+    float areaLightPdf = 0;
+    bool escaped = false;
+};
+
 class ShadingPoint {
   public:
     virtual ~ShadingPoint() = default;
@@ -70,8 +79,16 @@ class ShadingPoint {
     // The emitted radiance arriving from direction `wi`: the area light a ray leaving the
     // point hits, or the infinite lights when it escapes (one extension ray). Estimators that
     // sample directions rather than lights use it; surface points in scenes without media only
-    // (DirectLightingEstimator::worksInMedia).
-    virtual Rgb incidentEmission(const Vec3& wi) = 0;
+    // (DirectLightingEstimator::worksInMedia). *source says where it came from.
+    virtual Rgb incidentEmission(const Vec3& wi, EmissionSource* source) = 0;
+    Rgb incidentEmission(const Vec3& wi) {
+        EmissionSource source;
+        return incidentEmission(wi, &source);
+    }
+    // A point on `light` (one of the scene's), drawn by the light's own sampler with
+    // coordinates `u`, without light selection: for estimators with one mixture component per
+    // light (PMC-HI). Its density is the sample's pdf (solid angle).
+    virtual bool sampleLightOf(const Light& light, const Vec2& u, LightSample* sample) const = 0;
     // In a scene whose lights are all infinite (a direction is then the point on every light
     // it sees): the density with which sampleLight() draws direction `wi`, summed over the
     // lights, and their unoccluded radiance along it. For estimators that mix light samples

@@ -52,8 +52,9 @@ class ObservedSampleLoop final : public PixelRenderer {
     void render(const PixelVisit& visit, PixelWork& work) override {
         loop_.render(visit, work);
         finite_.clear();
+        uint64_t counted = 0;  // the loop counts them
         for (const Rgb& value : work.values)
-            finite_.push_back(value.isFinite() ? value : Rgb(0.0f));
+            finite_.push_back(finiteOrZero(value, &counted));
         observe_(visit, finite_);
     }
 

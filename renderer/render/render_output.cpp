@@ -4,7 +4,7 @@
 
 namespace rr {
 
-ExrImage filmToExr(const Film& film, const std::vector<Rgb>& estimates) {
+ExrImage filmToExr(const Film& film, const PixelEstimates& estimates) {
     ExrImage image;
     image.width = film.width();
     image.height = film.height();
@@ -17,13 +17,14 @@ ExrImage filmToExr(const Film& film, const std::vector<Rgb>& estimates) {
     float *r = channel("R"), *g = channel("G"), *b = channel("B");
     float *vr = channel("variance.R"), *vg = channel("variance.G"), *vb = channel("variance.B");
     float* samples = channel("samples");
-    if (!estimates.empty() && estimates.size() != n)
-        throw std::logic_error("pixel estimates must give one value per pixel");
+    const bool own = !estimates.values.empty();
+    if (own && (estimates.values.size() != n || estimates.variances.size() != n))
+        throw std::logic_error("pixel estimates must give one value and variance per pixel");
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             const size_t i = size_t(y) * image.width + x;
-            const Rgb m = estimates.empty() ? film.mean(x, y) : estimates[i];
-            const Rgb v = film.varianceOfMean(x, y);
+            const Rgb m = own ? estimates.values[i] : film.mean(x, y);
+            const Rgb v = own ? estimates.variances[i] : film.varianceOfMean(x, y);
             r[i] = m.r;
             g[i] = m.g;
             b[i] = m.b;

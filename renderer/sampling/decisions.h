@@ -26,6 +26,10 @@ enum class Decision : uint8_t {
     // Two-stage sampling (techniques/two_stage):
     PeakLobe,       // 1-D: lobe of a BSDF sample drawn to find a peak
     PeakDirection,  // 2-D: direction of that sample
+    // Population Monte Carlo (techniques/pmc):
+    MixtureCount,      // 1-D: the residual offset of an iteration's deterministic mixture counts
+    MixtureLobe,       // 1-D: lobe of a sample drawn from the BSDF component
+    MixtureDirection,  // 2-D: a sample's point on a light or direction, for any component
     Count
 };
 
@@ -37,6 +41,7 @@ constexpr int dimensionCount(Decision d) {
         case Decision::BsdfDirection:
         case Decision::CandidateDirection:
         case Decision::PeakDirection:
+        case Decision::MixtureDirection:
             return 2;
         default:
             return 1;
@@ -75,6 +80,12 @@ constexpr const char* decisionName(Decision d) {
             return "peak_lobe";
         case Decision::PeakDirection:
             return "peak_direction";
+        case Decision::MixtureCount:
+            return "mixture_count";
+        case Decision::MixtureLobe:
+            return "mixture_lobe";
+        case Decision::MixtureDirection:
+            return "mixture_direction";
         case Decision::Count:
             break;
     }

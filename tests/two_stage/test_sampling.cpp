@@ -154,7 +154,9 @@ class FixedPoint final : public ShadingPoint {
         static const ShadingContext ctx{};
         return material_ ? material_->pdf(ctx, woLocal_, frame_.toLocal(wi)) : 0.0f;
     }
-    Rgb incidentEmission(const Vec3&) override { return Rgb(0.0f); }
+    using ShadingPoint::incidentEmission;
+    Rgb incidentEmission(const Vec3&, EmissionSource*) override { return Rgb(0.0f); }
+    bool sampleLightOf(const Light&, const Vec2&, LightSample*) const override { return false; }
     float infiniteLightPdf(const Vec3&, Rgb* radiance) const override {
         *radiance = Rgb(0.0f);
         return 0;

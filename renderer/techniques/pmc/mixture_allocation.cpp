@@ -1,5 +1,6 @@
 #include "techniques/pmc/mixture_allocation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -27,32 +28,35 @@ std::vector<double> mixtureWeights(const std::vector<double>& sampleVariance,
     return alpha;
 }
 
-void mixtureCounts(const std::vector<double>& alpha, uint64_t total, double u,
-                   std::vector<uint32_t>* counts) {
+void mixtureCounts(std::span<const double> alpha, uint64_t total, double u,
+                   std::span<uint32_t> counts) {
+    if (counts.size() != alpha.size()) throw std::logic_error("one count per weight");
     const size_t pixels = alpha.size();
-    counts->assign(pixels, 0);
     double fractionSum = 0;
     uint64_t whole = 0;
     for (size_t k = 0; k < pixels; ++k) {
         const double expected = double(total) * alpha[k];
         const double floor = std::floor(expected);
-        (*counts)[k] = static_cast<uint32_t>(floor);
-        whole += (*counts)[k];
+        counts[k] = static_cast<uint32_t>(floor);
+        whole += counts[k];
         fractionSum += expected - floor;
     }
     const uint64_t residual = whole < total ? total - whole : 0;
     if (residual == 0 || !(fractionSum > 0)) return;
-    // Points u, u + 1, …, u + residual − 1 on the fractional parts laid end to end, scaled so
-    // that they span exactly `residual` (Σ frac equals it up to rounding).
-    const double scale = fractionSum / double(residual);
-    double next = u * scale, end = 0;
+    // The fractional parts laid end to end and scaled to span exactly `residual`, the last end
+    // forced to it; the points u, u + 1, … that fall in (G_{k−1}, G_k] go to pixel k. Whole
+    // numbers of points: ⌈G_k − u⌉ − ⌈G_{k−1} − u⌉, so the total is exactly `residual`.
+    const double scale = double(residual) / fractionSum;
+    double cumulative = 0;
+    int64_t before = 0;  // ⌈G_{−1} − u⌉ = ⌈−u⌉ = 0
     for (size_t k = 0; k < pixels; ++k) {
         const double expected = double(total) * alpha[k];
-        end += expected - std::floor(expected);
-        if (next < end) {  // a fraction < 1 holds at most one point (up to rounding)
-            ++(*counts)[k];
-            next += scale;
-        }
+        cumulative += expected - std::floor(expected);
+        const double end =
+            k + 1 == pixels ? double(residual) : std::min(cumulative * scale, double(residual));
+        const auto upTo = static_cast<int64_t>(std::ceil(end - u));
+        counts[k] += static_cast<uint32_t>(upTo - before);
+        before = upTo;
     }
 }
 

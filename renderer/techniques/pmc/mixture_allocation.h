@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace rr::pmc {
@@ -23,9 +24,10 @@ std::vector<double> mixtureWeights(const std::vector<double>& sampleVariance,
 // §4.3: pixel k gets ⌊N α_k⌋ samples, and the N − Σ⌊N α⌋ left over go to pixels with
 // probability proportional to their fractional parts, by systematic sampling (one offset
 // `u` ∈ [0, 1), stride 1 over the fractional parts laid end to end), so each pixel gets
-// ⌊N α_k⌋ or ⌈N α_k⌉ samples and E[n_k] = N α_k exactly (the paper does not say which residual
-// scheme; README.md, reading 5). Returns the counts into *counts.
-void mixtureCounts(const std::vector<double>& alpha, uint64_t total, double u,
-                   std::vector<uint32_t>* counts);
+// ⌊N α_k⌋ or ⌈N α_k⌉ samples (up to rounding), N in all, and E[n_k] = N α_k (the paper does not say
+// which residual scheme; README.md, "Residual draw"). PMC-HI counts its components' samples the
+// same way (§5). `counts` has one entry per weight.
+void mixtureCounts(std::span<const double> alpha, uint64_t total, double u,
+                   std::span<uint32_t> counts);
 
 }  // namespace rr::pmc

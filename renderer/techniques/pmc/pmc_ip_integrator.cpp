@@ -1,10 +1,12 @@
 #include "techniques/pmc/pmc_ip_integrator.h"
 
 #include <chrono>
+#include <stdexcept>
 
 #include "config/config_error.h"
 #include "metrics/tvi.h"
 #include "render/iterated_allocation.h"
+#include "render/renderer.h"
 #include "sampling/hash.h"
 #include "techniques/pmc/mixture_allocation.h"
 
@@ -22,7 +24,10 @@ double residualOffset(uint32_t seed, int iteration) {
 
 PmcIpIntegrator::PmcIpIntegrator(std::unique_ptr<SampleIntegrator> pixelIntegrator,
                                  const PmcIpSettings& settings)
-    : pixelIntegrator_(std::move(pixelIntegrator)), settings_(settings) {}
+    : pixelIntegrator_(std::move(pixelIntegrator)), settings_(settings) {
+    if (settings_.initialSpp < 2 || settings_.iterationSpp < 1)
+        throw std::logic_error("pmc_ip needs two initial samples per pixel and iterations of one");
+}
 
 nlohmann::json PmcIpIntegrator::parameters() const {
     nlohmann::json p;
@@ -32,8 +37,8 @@ nlohmann::json PmcIpIntegrator::parameters() const {
     p["iteration_spp"] = settings_.iterationSpp;
     p["epsilon"] = settings_.epsilon;
     p["image"] = settings_.image == ImageEstimate::Iterations ? "iterations" : "pooled";
-    if (iterationsDone_ > 0) {
-        p["iterations"] = iterationsDone_;
+    if (completedIterations() > 0) {
+        p["iterations"] = completedIterations();
         p["adapt_seconds"] = adaptSeconds_;
     }
     return p;
@@ -47,12 +52,21 @@ std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& 
                                              std::to_string(step) + "; " + std::to_string(in.spp) +
                                              " spp is not " + std::to_string(initial) +
                                              " + a multiple of " + std::to_string(step));
+    const uint64_t pixels = uint64_t(in.width) * uint64_t(in.height);
+    // A pixel's count must stay exact in the film and the sampler (kMaxSpp); one iteration
+    // could give nearly all its N samples to one pixel.
+    if (pixels * step > kMaxSpp)
+        throw ConfigError("/integrator/iteration_spp",
+                          "an iteration of " + std::to_string(pixels * step) +
+                              " samples could put more than 2^24 in one pixel; render fewer "
+                              "pixels or fewer samples per iteration");
     width_ = in.width;
     seed_ = in.seed;
     maxIterations_ = int((in.spp - initial) / step);
     iterationsDone_ = 0;
+    planned_ = false;
+    ran_ = false;
     adaptSeconds_ = 0;
-    const size_t pixels = size_t(in.width) * in.height;
     pixels_.assign(pixels, PixelState{});
     alpha_.assign(pixels, 1.0 / double(pixels));
     sampleWeight_.assign(pixels, 1.0 / initial);
@@ -68,12 +82,14 @@ std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& 
 }
 
 bool PmcIpIntegrator::allocate(int iteration, std::vector<uint32_t>* counts) {
+    completeIteration();
     if (iteration > maxIterations_) return false;
     if (iteration == 0)
         counts->assign(pixels_.size(), settings_.initialSpp);
     else
         adapt(counts);
-    ++iterationsDone_;
+    planned_ = true;
+    ran_ = false;
     return true;
 }
 
@@ -90,19 +106,20 @@ void PmcIpIntegrator::adapt(std::vector<uint32_t>* counts) {
     }
     alpha_ = mixtureWeights(variance_, luminance, settings_.epsilon, kDefaultCdPerUnit);
     const uint64_t total = uint64_t(pixels) * settings_.iterationSpp;
-    mixtureCounts(alpha_, total, residualOffset(seed_, iterationsDone_), counts);
+    counts->resize(pixels);
+    mixtureCounts(alpha_, total, residualOffset(seed_, iterationsDone_), *counts);
     for (size_t k = 0; k < pixels; ++k) {
         sampleWeight_[k] = 1.0 / (double(total) * alpha_[k]);
-        // The control variate of this iteration's estimate: the pixel's mean so far.
         PixelState& p = pixels_[k];
         for (int c = 0; c < 3; ++c)
-            p.estimateSum[c] += p.rgbSum[c] / p.samples;
+            p.control[c] = p.rgbSum[c] / p.samples;
     }
     adaptSeconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void PmcIpIntegrator::observe(const PixelVisit& visit, const std::vector<Rgb>& values) {
+    ran_.store(true, std::memory_order_relaxed);
     const size_t k = size_t(visit.y) * width_ + visit.x;
     PixelState& p = pixels_[k];
     double sum[3] = {0, 0, 0};
@@ -113,27 +130,54 @@ void PmcIpIntegrator::observe(const PixelVisit& visit, const std::vector<Rgb>& v
         for (int c = 0; c < 3; ++c)
             sum[c] += v[c];
     }
-    // The iteration's estimate is c + Σ (L − c) / (N α), c added by adapt() (pixels without
-    // samples in the iteration included).
     const double n = double(values.size());
     for (int c = 0; c < 3; ++c) {
-        const double before = p.samples > 0 ? p.rgbSum[c] / p.samples : 0.0;
-        p.estimateSum[c] += (sum[c] - n * before) * sampleWeight_[k];
+        p.iterationSum[c] += (sum[c] - n * p.control[c]) * sampleWeight_[k];
         p.rgbSum[c] += sum[c];
     }
     p.samples += uint32_t(values.size());
 }
 
-std::vector<Rgb> PmcIpIntegrator::pixelEstimates() const {
-    if (settings_.image == ImageEstimate::Pooled || iterationsDone_ == 0) return {};
-    std::vector<Rgb> image(pixels_.size());
-    for (size_t k = 0; k < pixels_.size(); ++k) {
-        const double* sum = pixels_[k].estimateSum;
-        image[k] = Rgb(static_cast<float>(sum[0] / iterationsDone_),
-                       static_cast<float>(sum[1] / iterationsDone_),
-                       static_cast<float>(sum[2] / iterationsDone_));
+void PmcIpIntegrator::completeIteration() {
+    if (!currentIterationRan()) {
+        planned_ = false;
+        return;
     }
-    return image;
+    for (PixelState& p : pixels_)
+        for (int c = 0; c < 3; ++c) {
+            const double estimate = p.control[c] + p.iterationSum[c];
+            p.estimateSum[c] += estimate;
+            p.estimateSquares[c] += estimate * estimate;
+            p.iterationSum[c] = 0;
+        }
+    ++iterationsDone_;
+    planned_ = false;
+}
+
+PixelEstimates PmcIpIntegrator::pixelEstimates() const {
+    const int t = completedIterations();
+    // One iteration (the initial image) is the film's mean.
+    if (settings_.image == ImageEstimate::Pooled || t <= 1) return {};
+    const bool current = currentIterationRan();  // not yet added up: the render just ended
+    PixelEstimates out;
+    out.values.resize(pixels_.size());
+    out.variances.resize(pixels_.size());
+    for (size_t k = 0; k < pixels_.size(); ++k) {
+        const PixelState& p = pixels_[k];
+        float mean[3], variance[3];
+        for (int c = 0; c < 3; ++c) {
+            const double e = current ? p.control[c] + p.iterationSum[c] : 0.0;
+            const double sum = p.estimateSum[c] + e, squares = p.estimateSquares[c] + e * e;
+            const double m = sum / t;
+            mean[c] = static_cast<float>(m);
+            // The spread of the iterations' estimates; one iteration, the samples' own.
+            variance[c] = static_cast<float>(
+                t > 1 ? std::max(0.0, squares - t * m * m) / double(t - 1) / double(t) : 0.0);
+        }
+        out.values[k] = Rgb(mean[0], mean[1], mean[2]);
+        out.variances[k] = Rgb(variance[0], variance[1], variance[2]);
+    }
+    return out;
 }
 
 std::vector<AuxiliaryChannel> PmcIpIntegrator::auxiliaryChannels() const {

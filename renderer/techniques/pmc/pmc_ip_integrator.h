@@ -6,22 +6,26 @@
 //    the image so far (§4.2) and counts by deterministic mixture sampling (§4.3);
 //    mixture_allocation.h has both steps;
 //  - until the render's spp (initial_spp + k × iteration_spp) or its time limit is reached.
-// Each pixel's sample indices continue across iterations, so its samples keep their
-// stratification (render/iterated_allocation.h). The adaptation runs between iterations inside
+// Each pixel's sample indices continue across iterations (render/iterated_allocation.h), so a
+// structured sampler's sets carry on across them. The adaptation runs between iterations inside
 // the timed render, so times and P-Eff charge it.
 //
 // The image. A pixel can get no sample in an iteration, so the paper's "average of the
-// sub-images" needs a per-iteration estimate defined for every pixel: Σ L / (N α_ij), the sum
-// of the pixel's samples over its expected count (E[n_ij] = N α_ij, and α depends only on
-// earlier iterations), which is unbiased; the image is the unweighted mean of the iterations'
-// estimates, the initial one included (`image`: "iterations", the default). `image`: "pooled"
-// takes the mean of all the pixel's samples instead, which is slightly biased because how many
-// samples a pixel gets depends on the values of its earlier ones (README.md, reading 4).
+// sub-images" needs a per-iteration estimate defined for every pixel. Iteration t's is
+// c + Σ (L − c) / (N α_ij): the pixel's samples against their expected count (E[n_ij] = N α_ij),
+// with the control variate c, the pixel's mean before the iteration (0 for the initial image;
+// README.md, "The image"). α and c depend on earlier samples only, so each iteration's estimate
+// is unbiased for the independent sampler; the image is the unweighted mean of the completed
+// iterations' estimates (`image`: "iterations", the default), and its variance channels the
+// variance of that mean from the spread of the iterations' estimates. `image`: "pooled" takes
+// the mean of all the pixel's samples instead, which is biased (a pixel whose first samples
+// missed a highlight looks flat and gets few more; README.md).
 //
 // Channels besides radiance: pmc.alpha, |P|·α of the last iteration (1 = a uniform share; the
 // α image of fig. 4), and pmc.variance, the per-sample luminance variance it came from.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -48,7 +52,7 @@ class PmcIpIntegrator final : public Integrator {
     uint32_t decisionRepeats() const override { return pixelIntegrator_->decisionRepeats(); }
     void prepare(const Scene& scene) override { pixelIntegrator_->prepare(scene); }
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override;
-    std::vector<Rgb> pixelEstimates() const override;
+    PixelEstimates pixelEstimates() const override;
 
     std::unique_ptr<RenderSchedule> schedule(const ScheduleInputs& inputs);
 
@@ -59,19 +63,29 @@ class PmcIpIntegrator final : public Integrator {
         double luminanceSum = 0, luminanceSquares = 0;
         uint32_t samples = 0;
         double rgbSum[3] = {0, 0, 0};
-        double estimateSum[3] = {0, 0, 0};  // Σ over iterations of Σ L / (N α)
+        double control[3] = {0, 0, 0};       // c of the current iteration
+        double iterationSum[3] = {0, 0, 0};  // Σ (L − c) / (N α) of the current iteration
+        double estimateSum[3] = {0, 0, 0};   // Σ over completed iterations of their estimates
+        double estimateSquares[3] = {0, 0, 0};
     };
 
     bool allocate(int iteration, std::vector<uint32_t>* counts);
     void adapt(std::vector<uint32_t>* counts);
     void observe(const PixelVisit& visit, const std::vector<Rgb>& values);
+    // Adds the current iteration to the completed ones, if its round ran (a render cancelled
+    // between planning and running a round never runs it).
+    void completeIteration();
+    bool currentIterationRan() const { return planned_ && ran_.load(std::memory_order_relaxed); }
+    int completedIterations() const { return iterationsDone_ + (currentIterationRan() ? 1 : 0); }
 
     std::unique_ptr<SampleIntegrator> pixelIntegrator_;
     PmcIpSettings settings_;
     int width_ = 0;
     uint32_t seed_ = 0;
     int maxIterations_ = 0;   // adaptive iterations the spp allows
-    int iterationsDone_ = 0;  // the initial one included
+    int iterationsDone_ = 0;  // completed and added up, the initial one included
+    bool planned_ = false;    // an iteration has been planned and not yet added up
+    std::atomic<bool> ran_{false};
     double adaptSeconds_ = 0;
     std::vector<PixelState> pixels_;
     std::vector<double> alpha_;

@@ -1,6 +1,7 @@
-// The `pmc_ip` integrator as scenes name it (configs/README.md).
+// The `pmc_ip` integrator and the `pmc_hi` estimator as scenes name them (configs/README.md).
 #include "config/json_reader.h"
 #include "render/technique_registry.h"
+#include "techniques/pmc/pmc_hi_estimator.h"
 #include "techniques/pmc/pmc_ip_integrator.h"
 
 namespace rr::pmc {
@@ -43,10 +44,21 @@ BuiltIntegrator makePmcIp(ObjectReader& json, const IntegratorContext& context) 
                            [raw](const ScheduleInputs& in) { return raw->schedule(in); }};
 }
 
+std::unique_ptr<DirectLightingEstimator> makePmcHi(ObjectReader& json) {
+    PmcHiSettings s;
+    s.samples = static_cast<uint32_t>(
+        json.getInt("samples", 0, Range::closed(0, PmcHiEstimator::kMaxPopulation)));
+    s.iterations = static_cast<uint32_t>(json.getInt("iterations", 2, Range::closed(1, 16)));
+    s.coneShare = json.getNumber("cone_share", 0.2, Range{0, 1, false, true});
+    s.floor = json.getNumber("floor", 0.05, Range{0, 0.5, false, true});
+    return std::make_unique<PmcHiEstimator>(s);
+}
+
 }  // namespace
 
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addIntegrator("pmc_ip", makePmcIp, /*rendersMedia=*/false);
+    registry.addEstimator("pmc_hi", makePmcHi);
 }
 
 }  // namespace rr::pmc

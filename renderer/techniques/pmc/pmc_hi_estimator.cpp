@@ -1,0 +1,214 @@
+#include "techniques/pmc/pmc_hi_estimator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "config/config_error.h"
+#include "math/frame.h"
+#include "sampling/warps.h"
+#include "techniques/pmc/mixture_allocation.h"
+
+namespace rr::pmc {
+
+namespace {
+
+constexpr uint32_t kMaxComponents = PmcHiEstimator::kMaxLights + 2;
+constexpr uint32_t kBsdf = 0;  // then the lights, then the cone
+
+float angleBetween(const Vec3& a, const Vec3& b) {
+    return std::acos(std::clamp(dot(a, b), -1.0f, 1.0f));
+}
+
+}  // namespace
+
+// The mixture's parameters at one iteration.
+struct PmcHiEstimator::Kernel {
+    std::array<double, kMaxComponents> alpha{};
+    Vec3 coneAxis{0, 0, 1};
+    float coneOneMinusCos = 0;  // 0: the cone is off
+
+    float conePdf(const Vec3& w) const {
+        if (coneOneMinusCos <= 0 || 1 - dot(w, coneAxis) > coneOneMinusCos) return 0;
+        return uniformConePdf(coneOneMinusCos);
+    }
+};
+
+// One member of the population: where it points, what it found, and its weight.
+struct PmcHiEstimator::Draw {
+    uint32_t component = 0;
+    bool found = false;  // a direction with some f·Le
+    Vec3 direction;
+    Rgb f, le, tr;
+    int areaLight = -1;  // the area light the sample lies on
+    float areaLightPdf = 0;
+    bool escaped = false;  // a direction to the infinite lights
+    float weight = 0;      // luminance of f·Le·V / K, for the adaptation
+};
+
+nlohmann::json PmcHiEstimator::parameters() const {
+    return {{"type", name()},
+            {"samples", settings_.samples},
+            {"iterations", settings_.iterations},
+            {"cone_share", settings_.coneShare},
+            {"floor", settings_.floor}};
+}
+
+void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
+    lights_.assign(scene.lights().begin(), scene.lights().end());
+    if (lights_.size() > kMaxLights)
+        throw ConfigError(pointer, "pmc_hi gives each light a mixture component, up to " +
+                                       std::to_string(kMaxLights) + " lights; the scene has " +
+                                       std::to_string(lights_.size()));
+    for (const Light* light : lights_)
+        if (light->isDelta())
+            throw ConfigError(pointer, "pmc_hi mixes densities over directions, which light " +
+                                           std::to_string(light->index()) +
+                                           " (a point or spot light) does not have");
+    if (settings_.floor * double(lights_.size() + 1) >= 1)
+        throw ConfigError(pointer + "/floor", "the floors of the BSDF and the " +
+                                                  std::to_string(lights_.size()) +
+                                                  " lights must leave room for adaptation "
+                                                  "(floor × (lights + 1) < 1)");
+}
+
+// Draws a sample of `component` and finds its f, Le and visibility.
+bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t component,
+                          uint32_t repeat, uint32_t repeats, Draw* d) const {
+    *d = Draw{};
+    d->component = component;
+    const Vec2 u = point.decide2D(Decision::MixtureDirection, repeat, repeats);
+    const uint32_t lightCount = uint32_t(lights_.size());
+    if (component >= 1 && component <= lightCount) {
+        const Light& light = *lights_[component - 1];
+        LightSample ls;
+        if (!point.sampleLightOf(light, u, &ls) || !(ls.pdf > 0)) return false;
+        d->direction = ls.direction;
+        d->f = point.scattering(ls.direction);
+        if (light.isInfinite()) {
+            d->escaped = true;
+            for (const Light* other : lights_)
+                if (other->isInfinite()) d->le += other->escapedRadiance(ls.direction);
+        } else {
+            d->areaLight = light.index();
+            d->areaLightPdf = ls.pdf;
+            d->le = ls.radiance;
+        }
+        if (d->f.isBlack() || d->le.isBlack()) return false;
+        float survival;
+        d->tr = point.visibility(ls, light.isInfinite(), &survival);
+        d->found = !d->tr.isBlack();
+        return d->found;
+    }
+    if (component == kBsdf) {
+        float pdf;
+        if (!point.sampleScattering(point.decide1D(Decision::MixtureLobe, repeat, repeats), u,
+                                    &d->direction, &pdf))
+            return false;
+    } else {
+        d->direction =
+            Frame(kernel.coneAxis).toWorld(squareToUniformCone(u, kernel.coneOneMinusCos));
+    }
+    d->f = point.scattering(d->direction);
+    if (d->f.isBlack()) return false;
+    EmissionSource source;
+    d->le = point.incidentEmission(d->direction, &source);
+    d->tr = Rgb(1.0f);
+    d->escaped = source.escaped;
+    if (source.areaLight) {
+        d->areaLight = source.areaLight->index();
+        d->areaLightPdf = source.areaLightPdf;
+    }
+    d->found = !d->le.isBlack();
+    return d->found;
+}
+
+// Eq. (8)'s denominator: every component's density of the sample.
+float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
+                              const Draw& d) const {
+    double k = kernel.alpha[kBsdf] * point.sampleScatteringPdf(d.direction);
+    const uint32_t cone = components() - 1;
+    if (kernel.alpha[cone] > 0) k += kernel.alpha[cone] * kernel.conePdf(d.direction);
+    if (d.areaLight >= 0) k += kernel.alpha[1 + d.areaLight] * d.areaLightPdf;
+    if (d.escaped)
+        for (const Light* light : lights_)
+            if (light->isInfinite())
+                k += kernel.alpha[1 + light->index()] * light->directionPdf(d.direction);
+    return static_cast<float>(k);
+}
+
+// Eq. (9) and the cone's axis and spread from the population just drawn.
+void PmcHiEstimator::adapt(const Kernel& previous, const Draw* draws, uint32_t count,
+                           uint32_t iteration, Kernel* next) const {
+    *next = previous;
+    const uint32_t m = components(), cone = m - 1;
+    std::array<double, kMaxComponents> sums{};
+    double total = 0;
+    Vec3 mean(0.0f);
+    for (uint32_t i = 0; i < count; ++i) {
+        sums[draws[i].component] += draws[i].weight;
+        total += draws[i].weight;
+        mean += draws[i].direction * draws[i].weight;
+    }
+    if (!(total > 0)) return;  // nothing found: keep the kernel
+    for (uint32_t k = 0; k < m; ++k)
+        next->alpha[k] = sums[k] / total;
+    // The cone about the weighted mean direction, its half-angle the weighted RMS angle.
+    const float meanLength = length(mean);
+    if (meanLength > 0) {
+        next->coneAxis = mean / meanLength;
+        double spread = 0;
+        for (uint32_t i = 0; i < count; ++i) {
+            const double a = angleBetween(draws[i].direction, next->coneAxis);
+            spread += draws[i].weight * a * a;
+        }
+        const float beta = std::clamp(float(std::sqrt(spread / total)), kMinConeAngle, 0.5f * kPi);
+        next->coneOneMinusCos = 2 * std::sin(0.5f * beta) * std::sin(0.5f * beta);
+    }
+    if (iteration == 0) {  // the cone enters with its share; the others make room
+        for (uint32_t k = 0; k < cone; ++k)
+            next->alpha[k] *= 1 - settings_.coneShare;
+        next->alpha[cone] = next->coneOneMinusCos > 0 ? settings_.coneShare : 0;
+    }
+    // Floors for the BSDF and the lights, which between them cover the integrand.
+    double sum = 0;
+    for (uint32_t k = 0; k < m; ++k) {
+        if (k != cone) next->alpha[k] = std::max(next->alpha[k], settings_.floor);
+        sum += next->alpha[k];
+    }
+    for (uint32_t k = 0; k < m; ++k)
+        next->alpha[k] /= sum;
+}
+
+void PmcHiEstimator::estimate(ShadingPoint& point) const {
+    const uint32_t m = components(), cone = m - 1, n = populationSize();
+    const uint32_t iterations = settings_.iterations, repeats = n * iterations;
+    Kernel kernel;
+    for (uint32_t k = 0; k < cone; ++k)
+        kernel.alpha[k] = 1.0 / double(m - 1);
+    std::array<Draw, kMaxPopulation> draws;
+    std::array<uint32_t, kMaxComponents> counts{};
+    const float sampleWeight = 1.0f / float(n * iterations);
+    for (uint32_t t = 0; t < iterations; ++t) {
+        mixtureCounts(std::span<const double>(kernel.alpha.data(), m), n,
+                      point.decide1D(Decision::MixtureCount, t, iterations),
+                      std::span<uint32_t>(counts.data(), m));
+        uint32_t i = 0;
+        for (uint32_t k = 0; k < m; ++k)
+            for (uint32_t c = 0; c < counts[k]; ++c, ++i) {
+                Draw& d = draws[i];
+                if (!draw(point, kernel, k, t * n + i, repeats, &d)) continue;
+                const float density = this->density(point, kernel, d);
+                if (!(density > 0)) continue;
+                const Rgb value = d.f * d.le * d.tr;
+                d.weight = value.luminance() / density;
+                point.add(point.contribution(d.f, d.le, d.tr, sampleWeight, density));
+            }
+        if (t + 1 < iterations) {
+            const Kernel previous = kernel;
+            adapt(previous, draws.data(), i, t, &kernel);
+        }
+    }
+}
+
+}  // namespace rr::pmc

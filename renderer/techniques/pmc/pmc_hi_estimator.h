@@ -1,0 +1,78 @@
+// `pmc_hi`: population Monte Carlo for the hemispheric integral of direct lighting (Lai et al.
+// 2007 §5), a direct-lighting estimator (integrators/direct_lighting_estimator.h) usable by
+// `direct` and at every vertex of `path_mis`.
+//
+// Per shading point, T iterations of a population of N samples from the mixture kernel
+// (eq. 7)  K = α_BSDF h_BSDF + Σ_k α_Lk h_Lk + α_cone h_cone(d, β):
+// the BSDF's own sampling, one component per light (its own sampler, no selection), and
+// directions uniform in the cone of half-angle β about d. Per iteration:
+//  - counts per component by deterministic mixture sampling (⌊Nα_k⌋ plus a systematic
+//    residual, mixture_allocation.h), so E[n_k] = N α_k;
+//  - each sample x (a point on a light, or the emitter a direction finds) is weighed by the
+//    full mixture, w = f(x)/K(x) (eq. 8, f = Fs·|cos θ|·Le·V), where K sums every
+//    component's density of x: the BSDF's and the cone's of its direction, and the density
+//    of the light x lies on (for a direction to the infinite lights, each of theirs);
+//  - the iteration's estimate is (1/N) Σ w, unbiased given α;
+//  - then the kernel adapts to the population (eq. 9): α_k ∝ Σ_{i∈S_k} luminance(w_i), d the
+//    w-weighted mean direction, β the w-weighted RMS angle about d (in [kMinConeAngle, π/2]);
+//    after iteration 0 the cone gets α = `cone_share` and the others are scaled by
+//    1 − cone_share; α_BSDF and every α_Lk stay at least `floor` (then renormalised), so the
+//    components that cover the integrand never die.
+// Iteration 0 has equal α over the BSDF and the lights, the cone off. The estimate is the
+// unweighted mean of the T iterations' estimates: fixed weights, so unbiased. Emission that
+// the integrator's own BSDF samples find is excluded (this estimate covers it all). Area and
+// infinite lights only (a point light has no density over directions to mix); surfaces in
+// scenes without media.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "integrators/direct_lighting_estimator.h"
+
+namespace rr::pmc {
+
+struct PmcHiSettings {
+    uint32_t samples = 0;  // N per iteration; 0: twice the components (2m, §5)
+    uint32_t iterations = 2;
+    double coneShare = 0.2;  // α_cone after iteration 0
+    double floor = 0.05;     // least α of the BSDF and of each light
+};
+
+class PmcHiEstimator final : public DirectLightingEstimator {
+  public:
+    // The most lights that get a component each.
+    static constexpr uint32_t kMaxLights = 16;
+    static constexpr float kMinConeAngle = 1e-3f;
+    static constexpr uint32_t kMaxPopulation = 256;
+
+    explicit PmcHiEstimator(const PmcHiSettings& settings) : settings_(settings) {}
+
+    std::string name() const override { return "pmc_hi"; }
+    nlohmann::json parameters() const override;
+    uint32_t lightSamples() const override { return populationSize() * settings_.iterations; }
+    FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
+    bool worksInMedia() const override { return false; }
+    void prepare(const Scene& scene, const std::string& pointer) override;
+    void estimate(ShadingPoint& point) const override;
+
+    // m: the BSDF, one per light, the cone.
+    uint32_t components() const { return uint32_t(lights_.size()) + 2; }
+    uint32_t populationSize() const {
+        return settings_.samples > 0 ? settings_.samples : 2 * components();
+    }
+
+  private:
+    struct Kernel;
+    struct Draw;
+    bool draw(ShadingPoint& point, const Kernel& kernel, uint32_t component, uint32_t repeat,
+              uint32_t repeats, Draw* out) const;
+    float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
+    void adapt(const Kernel& previous, const Draw* draws, uint32_t count, uint32_t iteration,
+               Kernel* next) const;
+
+    PmcHiSettings settings_;
+    std::vector<const Light*> lights_;
+};
+
+}  // namespace rr::pmc

@@ -1,0 +1,76 @@
+"""References with the same key (scene document, integrator, resolution, spp; fixed seeds) are
+the same image: the harness copies a current one instead of rendering it again, but not when
+forced, and never from a file whose hash no longer matches its manifest entry."""
+import contextlib
+import hashlib
+import io
+import json
+import tempfile
+import unittest
+from pathlib import Path
+from unittest import mock
+
+from fixtures import load_config, valid
+from harness import paths, references
+
+
+class SameKeyReferences(unittest.TestCase):
+    def setUp(self):
+        scratch = tempfile.TemporaryDirectory()
+        self.addCleanup(scratch.cleanup)
+        root = Path(scratch.name)
+        for name, value in (("REFERENCE", root / "reference"),
+                            ("MANIFEST", root / "reference" / "manifest.json")):
+            self.addCleanup(setattr, paths, name, getattr(paths, name))
+            setattr(paths, name, value)
+        self.first = load_config(valid(), figure="first")
+        self.second = load_config(valid(), figure="second")
+        self.profile = self.second.profiles["quick"]
+        image = b"an exr's bytes"
+        file = references.file_name(self.first, self.first.profiles["quick"])
+        (paths.REFERENCE / file).parent.mkdir(parents=True)
+        (paths.REFERENCE / file).write_bytes(image)
+        self.source = references.entry_name(self.first, self.first.profiles["quick"])
+        paths.MANIFEST.write_text(json.dumps({self.source: {
+            "file": str(file), "key": "K", "sha256": hashlib.sha256(image).hexdigest(),
+            "spp": 64, "noise_sigma_over_mu": 0.01}}))
+        for target, value in ((references, "key"), (references.renders, "render")):
+            patcher = mock.patch.object(target, value, side_effect=self.fake(value))
+            patcher.start()
+            self.addCleanup(patcher.stop)
+
+    @staticmethod
+    def fake(what):
+        if what == "key":
+            return lambda exp, profile: "K"
+
+        def render(*args, **kwargs):
+            raise RuntimeError("rendered")
+        return render
+
+    def ensure(self, **kwargs):
+        with contextlib.redirect_stdout(io.StringIO()):
+            references.ensure([self.second], "quick", **kwargs)
+
+    def test_a_current_reference_with_the_same_key_is_copied(self):
+        self.ensure()
+        manifest = json.loads(paths.MANIFEST.read_text())
+        entry = manifest[references.entry_name(self.second, self.profile)]
+        self.assertEqual(entry["copied_from"], self.source)
+        self.assertEqual(entry["file"], str(references.file_name(self.second, self.profile)))
+        self.assertEqual((paths.REFERENCE / entry["file"]).read_bytes(), b"an exr's bytes")
+        self.assertEqual(references.status(self.second, self.profile), "ok")
+
+    def test_forced_references_are_rendered(self):
+        with self.assertRaisesRegex(RuntimeError, "rendered"):
+            self.ensure(force=True)
+
+    def test_a_file_that_no_longer_matches_its_entry_is_not_copied(self):
+        entry = json.loads(paths.MANIFEST.read_text())[self.source]
+        (paths.REFERENCE / entry["file"]).write_bytes(b"changed since")
+        with self.assertRaisesRegex(RuntimeError, "rendered"):
+            self.ensure()
+
+
+if __name__ == "__main__":
+    unittest.main()
