@@ -215,12 +215,20 @@ TEST(PmcIpDeterminism, ImagesAndCountsAreIdenticalOnOneAndTwoThreads) {
     EXPECT_GT(varied, kSize * kSize / 4) << "the allocation should vary between pixels";
 }
 
-// 2 initial samples and iterations of 4 cannot make 11 spp; the error names the setting.
-TEST(PmcIpSettings, AnSppThatIsNoWholeNumberOfIterationsIsRefused) {
+// 11 spp with 2 initial samples and iterations of 4: 2 + 4 + 4 + 1, exactly 11 per pixel on
+// average; fewer spp than the initial image is refused naming the setting.
+TEST(PmcIpSettings, TheLastIterationTakesWhatIsLeftOfTheSpp) {
     const LoadedScene scene = checkerFloor({pmcIp("iterations")});
+    const TestRender render = renderScene(scene, 11, 1);
+    uint64_t samples = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            samples += render.film.sampleCount(x, y);
+    EXPECT_EQ(samples, uint64_t(11 * kSize * kSize));
+    EXPECT_EQ(scene.integrator->parameters()["iterations"], 4);
     try {
-        renderScene(scene, 11, 1);
-        FAIL() << "11 spp was accepted";
+        renderScene(scene, 1, 1);
+        FAIL() << "1 spp was accepted";
     } catch (const ConfigError& e) {
         EXPECT_EQ(e.pointer(), "/render/spp");
     }

@@ -46,23 +46,16 @@ nlohmann::json PmcIpIntegrator::parameters() const {
 
 std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& in) {
     const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
-    if (in.spp < initial || (in.timeLimit == 0 && (in.spp - initial) % step != 0))
+    if (in.spp < initial)
         throw ConfigError("/render/spp", "pmc_ip renders " + std::to_string(initial) +
-                                             " initial samples per pixel and then iterations of " +
-                                             std::to_string(step) + "; " + std::to_string(in.spp) +
-                                             " spp is not " + std::to_string(initial) +
-                                             " + a multiple of " + std::to_string(step));
+                                             " initial samples per pixel; " +
+                                             std::to_string(in.spp) + " spp is fewer");
     const uint64_t pixels = uint64_t(in.width) * uint64_t(in.height);
-    // A pixel's count must stay exact in the film and the sampler (kMaxSpp); one iteration
-    // could give nearly all its N samples to one pixel.
-    if (pixels * step > kMaxSpp)
-        throw ConfigError("/integrator/iteration_spp",
-                          "an iteration of " + std::to_string(pixels * step) +
-                              " samples could put more than 2^24 in one pixel; render fewer "
-                              "pixels or fewer samples per iteration");
     width_ = in.width;
     seed_ = in.seed;
-    maxIterations_ = int((in.spp - initial) / step);
+    // Iterations of `step` samples per pixel, the last taking what is left of the spp.
+    maxIterations_ = int((in.spp - initial + step - 1) / step);
+    lastIterationSpp_ = in.spp - initial - (maxIterations_ - 1) * step;
     iterationsDone_ = 0;
     planned_ = false;
     ran_ = false;
@@ -105,12 +98,18 @@ void PmcIpIntegrator::adapt(std::vector<uint32_t>* counts) {
         variance_[k] = std::max(0.0, (p.luminanceSquares - n * mean * mean) / (n - 1));
     }
     alpha_ = mixtureWeights(variance_, luminance, settings_.epsilon, kDefaultCdPerUnit);
-    const uint64_t total = uint64_t(pixels) * settings_.iterationSpp;
+    const uint32_t spp =
+        iterationsDone_ == maxIterations_ ? lastIterationSpp_ : settings_.iterationSpp;
+    const uint64_t total = uint64_t(pixels) * spp;
     counts->resize(pixels);
     mixtureCounts(alpha_, total, residualOffset(seed_, iterationsDone_), *counts);
     for (size_t k = 0; k < pixels; ++k) {
         sampleWeight_[k] = 1.0 / (double(total) * alpha_[k]);
         PixelState& p = pixels_[k];
+        // A pixel's count must stay exact in the film and the sampler.
+        if (uint64_t(p.samples) + (*counts)[k] > kMaxSpp)
+            throw std::runtime_error("pmc_ip: pixel " + std::to_string(k) +
+                                     " would get more than 2^24 samples");
         for (int c = 0; c < 3; ++c)
             p.control[c] = p.rgbSum[c] / p.samples;
     }

@@ -5,7 +5,8 @@
 //  - iteration t ≥ 1: N = |P| × `iteration_spp` samples spread by the mixture kernel, α from
 //    the image so far (§4.2) and counts by deterministic mixture sampling (§4.3);
 //    mixture_allocation.h has both steps;
-//  - until the render's spp (initial_spp + k × iteration_spp) or its time limit is reached.
+//  - until the render's spp or its time limit is reached; the last iteration takes what is
+//    left of the spp when `iteration_spp` does not divide it.
 // Each pixel's sample indices continue across iterations (render/iterated_allocation.h), so a
 // structured sampler's sets carry on across them. The adaptation runs between iterations inside
 // the timed render, so times and P-Eff charge it.
@@ -83,6 +84,7 @@ class PmcIpIntegrator final : public Integrator {
     int width_ = 0;
     uint32_t seed_ = 0;
     int maxIterations_ = 0;   // adaptive iterations the spp allows
+    uint32_t lastIterationSpp_ = 0;
     int iterationsDone_ = 0;  // completed and added up, the initial one included
     bool planned_ = false;    // an iteration has been planned and not yet added up
     std::atomic<bool> ran_{false};
