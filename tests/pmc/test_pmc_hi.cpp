@@ -3,9 +3,9 @@
 // averaged with fixed weights. On 32 × 32 images, the mean over seeds of PMC-HI renders agrees
 // with a long direct-MIS render for the image mean and every 8 × 8 block mean of every channel,
 // by z-tests with a Šidák-corrected family-wise level of 1 %: two area lights (the checker
-// floor), a constant environment (the escaped-direction branch), and PMC-HI at every vertex of
-// path_mis (the Cornell spheres, both diffuse); a floor 2.5 % darker must be rejected (the
-// tests' power).
+// floor), a constant environment (the escaped-direction branch), both together with three
+// iterations, the stratified sampler, and PMC-HI at every vertex of path_mis (the Cornell
+// spheres, both diffuse); a floor 2.5 % darker must be rejected (the tests' power).
 // Bad settings are refused naming the key.
 #include <gtest/gtest.h>
 
@@ -41,6 +41,11 @@ const Case kCases[] = {
     {"two_area_lights", "pmc_fig6_checker_floor.json", kDirectPmcHi, kDirectMis, 8, 16384},
     {"constant_environment", "ris_fig5_cook_torrance_sphere.json", kDirectPmcHi, kDirectMis, 8,
      16384},
+    {"area_lights_and_environment", "pmc_fig6_checker_floor.json",
+     R"({"type":"direct","estimator":{"type":"pmc_hi","samples":8,"iterations":3}})", kDirectMis, 8,
+     16384, R"(/lights=[{"type":"environment","radiance":0.3}])"},
+    {"stratified_sampler", "pmc_fig6_checker_floor.json", kDirectPmcHi, kDirectMis, 8, 16384,
+     R"(/render/sampler="stratified")"},
     {"path_mis_vertices", "cornell_spheres.json",
      R"({"type":"path_mis","estimator":{"type":"pmc_hi","samples":4,"iterations":3}})",
      R"({"type":"path_mis"})", 16, 8192,
@@ -115,6 +120,8 @@ TEST(PmcHiSettings, PointLightsAndExcessiveFloorsAreRefused) {
     EXPECT_EQ(
         refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","floor":0.4}})"}),
         "/integrator/estimator/floor");
+    EXPECT_EQ(refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","floor":0}})"}),
+              "/integrator/estimator/floor");
     EXPECT_EQ(
         refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","samples":257}})"}),
         "/integrator/estimator/samples");

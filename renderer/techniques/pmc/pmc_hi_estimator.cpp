@@ -15,6 +15,7 @@ namespace {
 
 constexpr uint32_t kMaxComponents = PmcHiEstimator::kMaxLights + 2;
 constexpr uint32_t kBsdf = 0;  // then the lights, then the cone
+constexpr float kConeSlack = 1e-3f;
 
 float angleBetween(const Vec3& a, const Vec3& b) {
     return std::acos(std::clamp(dot(a, b), -1.0f, 1.0f));
@@ -28,8 +29,17 @@ struct PmcHiEstimator::Kernel {
     Vec3 coneAxis{0, 0, 1};
     float coneOneMinusCos = 0;  // 0: the cone is off
 
+    bool coneEntered = false;  // the cone has had its share once
+
     float conePdf(const Vec3& w) const {
-        if (coneOneMinusCos <= 0 || 1 - dot(w, coneAxis) > coneOneMinusCos) return 0;
+        if (coneOneMinusCos <= 0) return 0;
+        // 1 − cos θ as sin²θ/(1 + cos θ), accurate in narrow cones (1 − dot(w, d) in float
+        // put 6 % of a 10⁻³-radian cone's own draws outside it, dropping their density); the
+        // slack covers the rounding of the draws' world directions.
+        const float c = dot(w, coneAxis);
+        if (c <= 0) return 0;
+        const Vec3 s = cross(w, coneAxis);
+        if (dot(s, s) / (1 + c) > coneOneMinusCos * (1 + kConeSlack)) return 0;
         return uniformConePdf(coneOneMinusCos);
     }
 };
@@ -139,7 +149,7 @@ float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
 
 // Eq. (9) and the cone's axis and spread from the population just drawn.
 void PmcHiEstimator::adapt(const Kernel& previous, const Draw* draws, uint32_t count,
-                           uint32_t iteration, Kernel* next) const {
+                           Kernel* next) const {
     *next = previous;
     const uint32_t m = components(), cone = m - 1;
     std::array<double, kMaxComponents> sums{};
@@ -165,10 +175,13 @@ void PmcHiEstimator::adapt(const Kernel& previous, const Draw* draws, uint32_t c
         const float beta = std::clamp(float(std::sqrt(spread / total)), kMinConeAngle, 0.5f * kPi);
         next->coneOneMinusCos = 2 * std::sin(0.5f * beta) * std::sin(0.5f * beta);
     }
-    if (iteration == 0) {  // the cone enters with its share; the others make room
+    // The cone enters with its share at the first adaptation that found something (after
+    // iteration 0, unless that found nothing); the others make room.
+    if (!previous.coneEntered && next->coneOneMinusCos > 0) {
         for (uint32_t k = 0; k < cone; ++k)
             next->alpha[k] *= 1 - settings_.coneShare;
-        next->alpha[cone] = next->coneOneMinusCos > 0 ? settings_.coneShare : 0;
+        next->alpha[cone] = settings_.coneShare;
+        next->coneEntered = true;
     }
     // Floors for the BSDF and the lights, which between them cover the integrand.
     double sum = 0;
@@ -186,7 +199,10 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
     Kernel kernel;
     for (uint32_t k = 0; k < cone; ++k)
         kernel.alpha[k] = 1.0 / double(m - 1);
-    std::array<Draw, kMaxPopulation> draws;
+    // One population per thread, reused: no allocation or clearing per shading point (each
+    // draw resets its entry).
+    thread_local std::vector<Draw> draws;
+    if (draws.size() < n) draws.resize(n);
     std::array<uint32_t, kMaxComponents> counts{};
     const float sampleWeight = 1.0f / float(n * iterations);
     for (uint32_t t = 0; t < iterations; ++t) {
@@ -206,7 +222,7 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
             }
         if (t + 1 < iterations) {
             const Kernel previous = kernel;
-            adapt(previous, draws.data(), i, t, &kernel);
+            adapt(previous, draws.data(), i, &kernel);
         }
     }
 }

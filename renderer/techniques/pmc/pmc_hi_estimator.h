@@ -15,8 +15,9 @@
 //  - the iteration's estimate is (1/N) Σ w, unbiased given α;
 //  - then the kernel adapts to the population (eq. 9): α_k ∝ Σ_{i∈S_k} luminance(w_i), d the
 //    w-weighted mean direction, β the w-weighted RMS angle about d (in [kMinConeAngle, π/2]);
-//    after iteration 0 the cone gets α = `cone_share` and the others are scaled by
-//    1 − cone_share; α_BSDF and every α_Lk stay at least `floor` (then renormalised), so the
+//    at the first adaptation that found something (normally after iteration 0) the cone gets
+//    α = `cone_share` and the others are scaled by 1 − cone_share; α_BSDF and every α_Lk are
+//    floored at `floor` before renormalising (so they stay above floor/(1 + floor·m)), so the
 //    components that cover the integrand never die.
 // Iteration 0 has equal α over the BSDF and the lights, the cone off. The estimate is the
 // unweighted mean of the T iterations' estimates: fixed weights, so unbiased. Emission that
@@ -68,8 +69,7 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     bool draw(ShadingPoint& point, const Kernel& kernel, uint32_t component, uint32_t repeat,
               uint32_t repeats, Draw* out) const;
     float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
-    void adapt(const Kernel& previous, const Draw* draws, uint32_t count, uint32_t iteration,
-               Kernel* next) const;
+    void adapt(const Kernel& previous, const Draw* draws, uint32_t count, Kernel* next) const;
 
     PmcHiSettings settings_;
     std::vector<const Light*> lights_;

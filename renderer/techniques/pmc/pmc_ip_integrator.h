@@ -83,7 +83,7 @@ class PmcIpIntegrator final : public Integrator {
     PmcIpSettings settings_;
     int width_ = 0;
     uint32_t seed_ = 0;
-    int maxIterations_ = 0;   // adaptive iterations the spp allows
+    int maxIterations_ = 0;  // adaptive iterations the spp allows
     uint32_t lastIterationSpp_ = 0;
     int iterationsDone_ = 0;  // completed and added up, the initial one included
     bool planned_ = false;    // an iteration has been planned and not yet added up

@@ -50,7 +50,8 @@ std::unique_ptr<DirectLightingEstimator> makePmcHi(ObjectReader& json) {
         json.getInt("samples", 0, Range::closed(0, PmcHiEstimator::kMaxPopulation)));
     s.iterations = static_cast<uint32_t>(json.getInt("iterations", 2, Range::closed(1, 16)));
     s.coneShare = json.getNumber("cone_share", 0.2, Range{0, 1, false, true});
-    s.floor = json.getNumber("floor", 0.05, Range{0, 0.5, false, true});
+    // A zero floor would let the BSDF and a light both die: no support where they cover.
+    s.floor = json.getNumber("floor", 0.05, Range::open(0, 0.5));
     return std::make_unique<PmcHiEstimator>(s);
 }
 
