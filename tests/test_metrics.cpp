@@ -10,7 +10,7 @@
 #include "metrics/merge.h"
 #include "metrics/metrics_error.h"
 #include "metrics/regression.h"
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 
 namespace rr::test {
 namespace {

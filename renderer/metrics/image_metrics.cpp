@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "metrics/metrics_error.h"
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 
 namespace rr {
 

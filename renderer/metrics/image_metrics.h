@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "metrics/input_images.h"
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 
 namespace rr {
 

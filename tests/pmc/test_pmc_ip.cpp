@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "config/config_error.h"
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 #include "support/chi2.h"
 #include "support/scene_testing.h"
 #include "techniques/pmc/mixture_allocation.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 
 namespace rr::pmc {
 

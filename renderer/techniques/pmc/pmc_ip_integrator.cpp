@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "config/config_error.h"
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 #include "render/iterated_allocation.h"
 #include "render/renderer.h"
 #include "sampling/hash.h"

@@ -1,4 +1,4 @@
-#include "metrics/tvi.h"
+#include "math/tvi.h"
 
 #include <cmath>
 
