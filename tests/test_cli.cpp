@@ -6,10 +6,9 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
-
-#include <nlohmann/json.hpp>
 
 #include "io/exr_io.h"
 #include "support/child_process.h"
@@ -176,8 +175,8 @@ TEST(Cli, CheckJsonSaysValidInvalidOrMissingAsset) {
     EXPECT_EQ(ok.at("integrator"), "path_mis");
     EXPECT_EQ(ok.at("sceneSha256").get<std::string>().size(), 64u);
 
-    const ProcessResult invalid = runProcess(
-        RENDERER_BINARY, {"check", kScene, "--json", "--set", "/render/spp=0"}, dir);
+    const ProcessResult invalid =
+        runProcess(RENDERER_BINARY, {"check", kScene, "--json", "--set", "/render/spp=0"}, dir);
     EXPECT_EQ(invalid.status, 2);
     const nlohmann::json bad = nlohmann::json::parse(invalid.out);
     EXPECT_EQ(bad.at("valid"), false);

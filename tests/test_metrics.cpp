@@ -6,11 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include "math/tvi.h"
 #include "metrics/image_metrics.h"
 #include "metrics/merge.h"
 #include "metrics/metrics_error.h"
 #include "metrics/regression.h"
-#include "math/tvi.h"
 
 namespace rr::test {
 namespace {

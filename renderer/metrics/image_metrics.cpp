@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "metrics/metrics_error.h"
 #include "math/tvi.h"
+#include "metrics/metrics_error.h"
 
 namespace rr {
 

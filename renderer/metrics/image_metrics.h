@@ -7,8 +7,8 @@
 #include <array>
 #include <optional>
 
-#include "metrics/input_images.h"
 #include "math/tvi.h"
+#include "metrics/input_images.h"
 
 namespace rr {
 
