@@ -1,0 +1,83 @@
+"""PMC fig. 4: PMC-IP on the Buddha (configs/experiments/pmc/tab1_buddha.json, at its profile's
+resolution, seed 0). Top: the uniform 2-spp initial image, the α image PMC-IP computes from it
+(|P|·α: 1 is a uniform share, log scale), PMC-IP after two iterations (2 + 4 + 4) and uniform
+10 spp. Bottom: the variance of each final image's pixels (PMC-IP's from the spread of its
+iterations' estimates, uniform's from its samples), on one log scale. PMC-IP's unbiased image
+has negative pixels where a starved pixel's one sample fell below its earlier mean (shown
+black), and bright ones where it fell above."""
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import OpenImageIO as oiio  # noqa: E402
+from matplotlib.colors import LogNorm  # noqa: E402
+
+from harness import config, paths, plots, renders  # noqa: E402
+
+CONFIG = paths.CONFIGS / "pmc" / "tab1_buddha.json"
+
+
+def channels(exr: Path, names: list[str]) -> list[np.ndarray]:
+    image = oiio.ImageBuf(str(exr))
+    pixels = image.get_pixels(oiio.FLOAT)
+    return [pixels[:, :, image.spec().channelindex(n)] for n in names]
+
+
+def rgb(exr: Path) -> np.ndarray:
+    return np.stack(channels(exr, ["R", "G", "B"]), axis=-1)
+
+
+def luminance_variance(exr: Path) -> np.ndarray:
+    r, g, b = channels(exr, ["variance.R", "variance.G", "variance.B"])
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b
+
+
+def write(profile_name: str) -> list[Path]:
+    exp = config.load(CONFIG)
+    profile = exp.profiles[profile_name]
+    suffix = paths.suffix(profile_name)
+    folder = paths.RENDERS / "pmc" / f"fig04{suffix}"
+    folder.mkdir(parents=True, exist_ok=True)
+    runs = {"initial": ("uniform", 2), "alpha": ("pmc_ip", 6), "pmc_ip": ("pmc_ip", 10),
+            "uniform": ("uniform", 10)}
+    files = {}
+    for name, (technique, spp) in runs.items():
+        files[name] = folder / f"{name}.exr"
+        renders.render(exp, profile, exp.techniques[technique].integrator, files[name], seed=0,
+                       spp=spp, threads=2)
+    scale = max(float(np.percentile(rgb(files["uniform"]), 99)), 1e-6)
+
+    def shown(exr: Path) -> np.ndarray:
+        # The unbiased image has negative pixels (a control variate's overshoot): black here.
+        return np.clip(np.clip(rgb(exr) / scale, 0, None) ** (1 / 2.2), 0, 1)
+
+    fig, axes = plt.subplots(2, 4, figsize=(12, 9.5))
+    axes[0, 0].imshow(shown(files["initial"]))
+    axes[0, 0].set_title("initial image, 2 spp")
+    (alpha,) = channels(files["alpha"], ["pmc.alpha"])
+    im = axes[0, 1].imshow(alpha, cmap="magma", norm=LogNorm(vmin=max(alpha.min(), 1e-3),
+                                                              vmax=max(alpha.max(), 1e-2)))
+    axes[0, 1].set_title("α from it (|P|·α)")
+    fig.colorbar(im, ax=axes[0, 1], fraction=0.046)
+    axes[0, 2].imshow(shown(files["pmc_ip"]))
+    axes[0, 2].set_title("PMC-IP, 2 + 4 + 4")
+    axes[0, 3].imshow(shown(files["uniform"]))
+    axes[0, 3].set_title("uniform, 10 spp")
+    variances = [luminance_variance(files[n]) for n in ("pmc_ip", "uniform")]
+    positive = np.concatenate([v[v > 0] for v in variances])
+    norm = LogNorm(vmin=float(np.percentile(positive, 1)), vmax=float(positive.max()))
+    for ax, variance, title in zip(axes[1, 2:], variances, ("PMC-IP", "uniform")):
+        im = ax.imshow(np.maximum(variance, norm.vmin), cmap="viridis", norm=norm)
+        ax.set_title(f"{title}: pixel variance")
+    fig.colorbar(im, ax=list(axes[1, 2:]), fraction=0.046, label="luminance variance")
+    for ax in axes.ravel():
+        ax.set_xticks([])
+        ax.set_yticks([])
+    for ax in axes[1, :2]:
+        ax.axis("off")
+    out = paths.PLOTS / "pmc" / f"fig04_buddha{suffix}.png"
+    plots.save(fig, out)
+    return [out]
