@@ -30,6 +30,7 @@ def write(profile_name: str) -> list[Path]:
     exr = paths.RENDERS / "ris" / f"fig03_m_over_n{suffix}.exr"
     exr.parent.mkdir(parents=True, exist_ok=True)
     integrator = exp.techniques["ris_optimal"].integrator
+    renders.check_scene(exp, profile, integrator)  # SceneRejected when an asset is absent
     renders.render(exp, profile, integrator, exr, seed=0, spp=1, threads=2)
     image = oiio.ImageBuf(str(exr))
     ratio = channel(image, "ris.mOverN")
