@@ -142,15 +142,17 @@ class SurfaceVertex final : public ShadingPoint {
             ++out_.rays.extension;
             const Scene& scene = out_.guide.scene();
             SurfaceHit lightHit;
-            *source = EmissionSource{};
+            if (source) *source = EmissionSource{};
             if (!scene.intersect(hit_.spawn(wi), &lightHit)) {
-                source->escaped = true;
+                if (source) source->escaped = true;
                 return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
             }
             const AreaLight* light = lightHit.shape->areaLight();
             if (!light) return Rgb(0.0f);
-            source->areaLight = light;
-            source->areaLightPdf = light->pdf(hit_.position, lightHit);
+            if (source) {
+                source->areaLight = light;
+                source->areaLightPdf = light->pdf(hit_.position, lightHit);
+            }
             return light->emitted(lightHit.geometricNormal, -wi);
         }
     }

@@ -79,12 +79,10 @@ class ShadingPoint {
     // The emitted radiance arriving from direction `wi`: the area light a ray leaving the
     // point hits, or the infinite lights when it escapes (one extension ray). Estimators that
     // sample directions rather than lights use it; surface points in scenes without media only
-    // (DirectLightingEstimator::worksInMedia). *source says where it came from.
+    // (DirectLightingEstimator::worksInMedia). *source, when given, says where it came from
+    // (its area light's density costs a little: callers that need the radiance only pass none).
     virtual Rgb incidentEmission(const Vec3& wi, EmissionSource* source) = 0;
-    Rgb incidentEmission(const Vec3& wi) {
-        EmissionSource source;
-        return incidentEmission(wi, &source);
-    }
+    Rgb incidentEmission(const Vec3& wi) { return incidentEmission(wi, nullptr); }
     // A point on `light` (one of the scene's), drawn by the light's own sampler with
     // coordinates `u`, without light selection: for estimators with one mixture component per
     // light (PMC-HI). Its density is the sample's pdf (solid angle).

@@ -163,36 +163,42 @@ double threshold() {
     return tThreshold(sidakAlpha(0.01, tests()), int(kSeeds) - 1);
 }
 
+struct Outcome {
+    double t;
+    std::string where;
+};
+
+// The 2 + 4 + 4-spp renders of the checker floor with `overrides` against the reference,
+// printed.
+Outcome compareAt10Spp(const std::vector<std::string>& overrides) {
+    Outcome o;
+    o.t = largestT(checkerFloor(overrides), 10, &o.where);
+    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", o.t, threshold(), o.where.c_str());
+    return o;
+}
+
 // Unbiased: the mean over seeds of the iterations' image (2 + 4 + 4 spp) matches a long
 // uniform render.
 TEST(PmcIpUnbiased, TheIterationsImageMatchesALongUniformRender) {
-    std::string where;
-    const double t = largestT(checkerFloor({pmcIp("iterations")}), 10, &where);
-    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", t, threshold(), where.c_str());
-    EXPECT_LT(t, threshold()) << where;
+    const Outcome o = compareAt10Spp({pmcIp("iterations")});
+    EXPECT_LT(o.t, threshold()) << o.where;
 }
 
 // The test's power: with a floor 2.5 % darker (both kinds of square) the same comparison must
 // fail.
 TEST(PmcIpUnbiased, NegativeControlDarkerSquaresAreRejected) {
-    std::string where;
-    const double t =
-        largestT(checkerFloor({pmcIp("iterations"), "/materials/diffuse/albedo=0.53625",
-                               "/materials/glossy_rough/reflectance=0.975",
-                               "/materials/glossy_sharp/reflectance=0.975"}),
-                 10, &where);
-    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", t, threshold(), where.c_str());
-    EXPECT_GT(t, threshold()) << where;
+    const Outcome o = compareAt10Spp({pmcIp("iterations"), "/materials/diffuse/albedo=0.53625",
+                                      "/materials/glossy_rough/reflectance=0.975",
+                                      "/materials/glossy_sharp/reflectance=0.975"});
+    EXPECT_GT(o.t, threshold()) << o.where;
 }
 
 // Pooling all a pixel's samples is biased: a pixel whose first samples missed the lights'
 // reflection looks flat, gets the defensive share only and keeps its dark estimate (measured:
 // a block 21 % dark).
 TEST(PmcIpUnbiased, NegativeControlThePooledImageIsRejected) {
-    std::string where;
-    const double t = largestT(checkerFloor({pmcIp("pooled")}), 10, &where);
-    std::printf("largest |t| %.2f (threshold %.2f) at %s\n", t, threshold(), where.c_str());
-    EXPECT_GT(t, threshold()) << where;
+    const Outcome o = compareAt10Spp({pmcIp("pooled")});
+    EXPECT_GT(o.t, threshold()) << o.where;
 }
 
 // The allocation depends on the film only, never on threads: the same pixels, bit for bit.
