@@ -15,7 +15,7 @@
 #include <string>
 #include <tuple>
 
-#include "loader/factories.h"
+#include "config/config_error.h"
 #include "scene/materials/ashikhmin_shirley.h"
 #include "scene/materials/blinn.h"
 #include "scene/materials/cook_torrance.h"
@@ -23,6 +23,7 @@
 #include "scene/materials/lambert.h"
 #include "support/bsdf_checks.h"
 #include "support/chi2.h"
+#include "support/scene_testing.h"
 #include "support/test_random.h"
 
 namespace rr::test {
@@ -487,19 +488,9 @@ TEST(DeclinedSamples, CountAgainstTheMassThePdfLacks) {
 
 // --- JSON ---------------------------------------------------------------------------------------
 
-std::unique_ptr<Material> fromJson(const std::string& text) {
-    const Json j = Json::parse(text);
-    ObjectReader reader(j, "/materials/m");
-    // These materials refer to no other material.
-    const MaterialReferences none = [](const Json&, const std::string& pointer) -> const Material* {
-        throw ConfigError(pointer, "no material references in this test");
-    };
-    return makeMaterial(reader, AssetResolver({}), none);
-}
-
 std::string errorPointer(const std::string& text) {
     try {
-        fromJson(text);
+        materialFromJson(text);
     } catch (const ConfigError& e) {
         return e.pointer();
     }
@@ -508,27 +499,27 @@ std::string errorPointer(const std::string& text) {
 
 TEST(Json, KeysBuildTheDocumentedMaterials) {
     const Vec3 wo = directionFromDegrees(30, 10), wi = directionFromDegrees(40, 170);
-    const auto b = fromJson(R"({"type": "blinn", "reflectance": 0.8, "roughness": 0.02,
+    const auto b = materialFromJson(R"({"type": "blinn", "reflectance": 0.8, "roughness": 0.02,
                                 "ior": 1.7})");
     const Blinn bRef(constantTexture(Rgb(0.8f)), constantTexture(0.02f), 1.7f);
     EXPECT_EQ(b->eval(kCtx, wo, wi), bRef.eval(kCtx, wo, wi));
     EXPECT_FLOAT_EQ(bRef.exponent(kCtx), 50.0f);  // two-stage fig. 8: roughness 0.02
-    const auto bDefault = fromJson(R"({"type": "blinn"})");
+    const auto bDefault = materialFromJson(R"({"type": "blinn"})");
     const Blinn bDefaultRef(constantTexture(Rgb(1.0f)), constantTexture(0.1f), 1.5f);
     EXPECT_EQ(bDefault->eval(kCtx, wo, wi), bDefaultRef.eval(kCtx, wo, wi));
 
-    const auto ct = fromJson(R"({"type": "cook_torrance", "roughness": 2})");
+    const auto ct = materialFromJson(R"({"type": "cook_torrance", "roughness": 2})");
     const CookTorrance ctRef(constantTexture(Rgb(1.0f)), constantTexture(2.0f), 1.5f);
     EXPECT_EQ(ct->eval(kCtx, wo, wi), ctRef.eval(kCtx, wo, wi));
-    const auto ctDefault = fromJson(R"({"type": "cook_torrance"})");
+    const auto ctDefault = materialFromJson(R"({"type": "cook_torrance"})");
     const CookTorrance ctDefaultRef(constantTexture(Rgb(1.0f)), constantTexture(0.2f), 1.5f);
     EXPECT_EQ(ctDefault->eval(kCtx, wo, wi), ctDefaultRef.eval(kCtx, wo, wi));
 
-    const auto asRoughness = fromJson(R"({"type": "ashikhmin_shirley", "diffuse": 0.3,
+    const auto asRoughness = materialFromJson(R"({"type": "ashikhmin_shirley", "diffuse": 0.3,
         "specular": [0.2, 0.3, 0.4], "roughness_u": 0.001, "roughness_v": 0.5})");
-    const auto asExponents = fromJson(R"({"type": "ashikhmin_shirley", "diffuse": 0.3,
+    const auto asExponents = materialFromJson(R"({"type": "ashikhmin_shirley", "diffuse": 0.3,
         "specular": [0.2, 0.3, 0.4], "exponent_u": 1000, "exponent_v": 2})");
-    const auto asDefaults = fromJson(R"({"type": "ashikhmin_shirley", "exponent_u": 1000,
+    const auto asDefaults = materialFromJson(R"({"type": "ashikhmin_shirley", "exponent_u": 1000,
         "exponent_v": 2})");
     const AshikhminShirley asRef(constantTexture(Rgb(0.5f)), constantTexture(Rgb(0.5f)),
                                  constantTexture(1000.0f), constantTexture(2.0f), true);

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "config/config_error.h"
+#include "loader/factories.h"
+
 namespace rr::test {
 
 LoadedScene loadSceneText(const std::string& json) {
@@ -17,6 +20,15 @@ LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string
     for (const std::string& o : overrides)
         applyOverride(doc, o);
     return loadScene(doc, AssetResolver::standard(TEST_SCENES_DIR));
+}
+
+std::unique_ptr<Material> materialFromJson(const std::string& json) {
+    const Json j = Json::parse(json);
+    ObjectReader reader(j, "/materials/m");
+    const MaterialReferences none = [](const Json&, const std::string& pointer) -> const Material* {
+        throw ConfigError(pointer, "no material references in this test");
+    };
+    return makeMaterial(reader, AssetResolver({}), none);
 }
 
 TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, int threads) {

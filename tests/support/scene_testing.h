@@ -2,6 +2,7 @@
 // means over pixel regions with their standard errors taken from the per-pixel variance.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "loader/scene_loader.h"
@@ -14,6 +15,9 @@ LoadedScene loadSceneText(const std::string& json);
 LoadedScene loadSceneJson(const Json& document);
 // A scene from configs/scenes by file name, with `--set`-style overrides applied.
 LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string>& overrides = {});
+// A material from its JSON object (one that refers to no other material), read as if at
+// /materials/m.
+std::unique_ptr<Material> materialFromJson(const std::string& json);
 
 struct TestRender {
     Film film;

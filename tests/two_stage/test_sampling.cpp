@@ -27,6 +27,7 @@
 #include "scene/lights/environment_map.h"
 #include "support/chi2.h"
 #include "support/maps.h"
+#include "support/scene_testing.h"
 #include "support/scratch.h"
 #include "support/test_random.h"
 #include "techniques/two_stage/hierarchical_warp.h"
@@ -172,15 +173,6 @@ class FixedPoint final : public ShadingPoint {
     Rgb sum_{0.0f};
 };
 
-std::unique_ptr<Material> material(const std::string& text) {
-    const Json j = Json::parse(text);
-    ObjectReader reader(j, "/materials/m");
-    const MaterialReferences none = [](const Json&, const std::string& pointer) -> const Material* {
-        throw ConfigError(pointer, "no material references in this test");
-    };
-    return makeMaterial(reader, AssetResolver({}), none);
-}
-
 // --- Cases --------------------------------------------------------------------------------------
 
 struct MaterialCase {
@@ -273,7 +265,7 @@ WarpTally warpMany(const TwoStageEstimator& e, const Partition& partition, uint6
 void checkPoint(const EnvironmentMap& map, const MaterialCase& m, const PointCase& pc,
                 const std::string& mapName) {
     const std::string what = mapName + "/" + m.name + "/" + pc.name;
-    const auto mat = material(m.json);
+    const auto mat = materialFromJson(m.json);
     FixedPoint point = FixedPoint::onMaterial(*mat, frameOf(pc), pc.wo);
     const auto e = estimatorOn(map);
     Partition partition;
@@ -353,7 +345,7 @@ TEST(TwoStagePartition, InitialPartitionIsSixRegions) {
 // follow the map below them) must be rejected.
 TEST(TwoStageSampling, NegativeControlLeafUniformDensityIsRejected) {
     const auto map = syntheticMap();
-    const auto mat = material(kMaterials[0].json);
+    const auto mat = materialFromJson(kMaterials[0].json);
     FixedPoint point = FixedPoint::onMaterial(*mat, frameOf(kPoints[0]), kPoints[0].wo);
     const auto e = estimatorOn(*map);
     Partition partition;
@@ -375,7 +367,7 @@ TEST(TwoStageSampling, NegativeControlLeafUniformDensityIsRejected) {
 // line (prob·cos φ / 2π² instead of prob / (2π² cos φ)) must fail the same test.
 TEST(TwoStageSampling, SolidAngleDensityIntegratesToOne) {
     const auto map = syntheticMap();
-    const auto mat = material(kMaterials[0].json);  // Lambert: a broad product
+    const auto mat = materialFromJson(kMaterials[0].json);  // Lambert: a broad product
     FixedPoint point = FixedPoint::onMaterial(*mat, frameOf(kPoints[0]), kPoints[0].wo);
     const auto e = estimatorOn(*map);
     Partition partition;

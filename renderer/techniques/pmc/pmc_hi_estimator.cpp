@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "config/config_error.h"
 #include "math/frame.h"
@@ -193,9 +194,32 @@ void PmcHiEstimator::adapt(const Kernel& previous, const Draw* draws, uint32_t c
         next->alpha[k] /= sum;
 }
 
+// Draws iteration t's population of n from `kernel` into `draws` (deterministic mixture
+// sampling for the counts) and calls found(draw, density) for each sample that found emission;
+// returns how many were drawn.
+template <class Found>
+uint32_t PmcHiEstimator::drawIteration(ShadingPoint& point, const Kernel& kernel, uint32_t t,
+                                       uint32_t n, uint32_t iterations, Draw* draws,
+                                       Found&& found) const {
+    const uint32_t m = components();
+    std::array<uint32_t, kMaxComponents> counts{};
+    mixtureCounts(std::span<const double>(kernel.alpha.data(), m), n,
+                  point.decide1D(Decision::MixtureCount, t, iterations),
+                  std::span<uint32_t>(counts.data(), m));
+    uint32_t i = 0;
+    for (uint32_t k = 0; k < m; ++k)
+        for (uint32_t c = 0; c < counts[k]; ++c, ++i) {
+            Draw& d = draws[i];
+            if (!draw(point, kernel, k, t * n + i, n * iterations, &d)) continue;
+            const float density = this->density(point, kernel, d);
+            if (density > 0) found(d, density);
+        }
+    return i;
+}
+
 void PmcHiEstimator::estimate(ShadingPoint& point) const {
     const uint32_t m = components(), cone = m - 1, n = populationSize();
-    const uint32_t iterations = settings_.iterations, repeats = n * iterations;
+    const uint32_t iterations = settings_.iterations;
     Kernel kernel;
     for (uint32_t k = 0; k < cone; ++k)
         kernel.alpha[k] = 1.0 / double(m - 1);
@@ -203,28 +227,53 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
     // draw resets its entry).
     thread_local std::vector<Draw> draws;
     if (draws.size() < n) draws.resize(n);
-    std::array<uint32_t, kMaxComponents> counts{};
     const float sampleWeight = 1.0f / float(n * iterations);
     for (uint32_t t = 0; t < iterations; ++t) {
-        mixtureCounts(std::span<const double>(kernel.alpha.data(), m), n,
-                      point.decide1D(Decision::MixtureCount, t, iterations),
-                      std::span<uint32_t>(counts.data(), m));
-        uint32_t i = 0;
-        for (uint32_t k = 0; k < m; ++k)
-            for (uint32_t c = 0; c < counts[k]; ++c, ++i) {
-                Draw& d = draws[i];
-                if (!draw(point, kernel, k, t * n + i, repeats, &d)) continue;
-                const float density = this->density(point, kernel, d);
-                if (!(density > 0)) continue;
-                const Rgb value = d.f * d.le * d.tr;
-                d.weight = value.luminance() / density;
+        const uint32_t drawn = drawIteration(
+            point, kernel, t, n, iterations, draws.data(), [&](Draw& d, float density) {
+                d.weight = (d.f * d.le * d.tr).luminance() / density;
                 point.add(point.contribution(d.f, d.le, d.tr, sampleWeight, density));
-            }
+            });
         if (t + 1 < iterations) {
             const Kernel previous = kernel;
-            adapt(previous, draws.data(), i, &kernel);
+            adapt(previous, draws.data(), drawn, &kernel);
         }
     }
+}
+
+PmcHiEstimator::Kernel PmcHiEstimator::kernelOf(const MixtureParameters& p) const {
+    if (p.alpha.size() != components())
+        throw std::invalid_argument("pmc_hi: one α per mixture component");
+    Kernel kernel;
+    std::copy(p.alpha.begin(), p.alpha.end(), kernel.alpha.begin());
+    kernel.coneAxis = normalize(p.coneAxis);
+    kernel.coneOneMinusCos = 2 * std::sin(0.5f * p.coneAngle) * std::sin(0.5f * p.coneAngle);
+    return kernel;
+}
+
+std::vector<PmcHiEstimator::MixtureSample> PmcHiEstimator::drawPopulation(
+    ShadingPoint& point, const MixtureParameters& p, uint32_t n) const {
+    const Kernel kernel = kernelOf(p);
+    std::vector<Draw> draws(n);
+    std::vector<MixtureSample> found;
+    drawIteration(point, kernel, 0, n, 1, draws.data(), [&](const Draw& d, float density) {
+        found.push_back({d.component, d.direction, density});
+    });
+    return found;
+}
+
+float PmcHiEstimator::mixtureDensity(ShadingPoint& point, const MixtureParameters& p,
+                                     const Vec3& wi) const {
+    Draw d;
+    d.direction = wi;
+    EmissionSource source;
+    if (point.scattering(wi).isBlack() || point.incidentEmission(wi, &source).isBlack()) return 0;
+    d.escaped = source.escaped;
+    if (source.areaLight) {
+        d.areaLight = source.areaLight->index();
+        d.areaLightPdf = source.areaLightPdf;
+    }
+    return density(point, kernelOf(p), d);
 }
 
 }  // namespace rr::pmc

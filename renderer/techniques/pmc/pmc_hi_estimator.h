@@ -63,9 +63,32 @@ class PmcHiEstimator final : public DirectLightingEstimator {
         return settings_.samples > 0 ? settings_.samples : 2 * components();
     }
 
+    // For the χ² test of the mixture (tests/pmc/test_pmc_hi_mixture.cpp): the kernel with
+    // fixed parameters, one population drawn from it as estimate() draws an iteration's, and
+    // the density of the samples it finds.
+    struct MixtureParameters {
+        std::vector<double> alpha;  // components(): the BSDF, each light, the cone
+        Vec3 coneAxis{0, 0, 1};
+        float coneAngle = 0;  // β, radians; alpha's last entry must be 0 when there is no cone
+    };
+    struct MixtureSample {
+        uint32_t component;
+        Vec3 direction;
+        float density;  // K (eq. 8's denominator)
+    };
+    // The samples of one population of `n` that found emission (f·Le·V > 0).
+    std::vector<MixtureSample> drawPopulation(ShadingPoint& point, const MixtureParameters& p,
+                                              uint32_t n) const;
+    // K of the sample a draw in direction `wi` would find: 0 where f·Le is zero.
+    float mixtureDensity(ShadingPoint& point, const MixtureParameters& p, const Vec3& wi) const;
+
   private:
     struct Kernel;
     struct Draw;
+    template <class Found>
+    uint32_t drawIteration(ShadingPoint& point, const Kernel& kernel, uint32_t t, uint32_t n,
+                           uint32_t iterations, Draw* draws, Found&& found) const;
+    Kernel kernelOf(const MixtureParameters& p) const;
     bool draw(ShadingPoint& point, const Kernel& kernel, uint32_t component, uint32_t repeat,
               uint32_t repeats, Draw* out) const;
     float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
