@@ -12,22 +12,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-import OpenImageIO as oiio  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
-from harness import config, paths, plots, renders  # noqa: E402
+from harness import paths, plots, renders  # noqa: E402
+
+from .images import channels, figure_run, rgb, shown  # noqa: E402
 
 CONFIG = paths.CONFIGS / "pmc" / "tab1_buddha.json"
-
-
-def channels(exr: Path, names: list[str]) -> list[np.ndarray]:
-    image = oiio.ImageBuf(str(exr))
-    pixels = image.get_pixels(oiio.FLOAT)
-    return [pixels[:, :, image.spec().channelindex(n)] for n in names]
-
-
-def rgb(exr: Path) -> np.ndarray:
-    return np.stack(channels(exr, ["R", "G", "B"]), axis=-1)
 
 
 def luminance_variance(exr: Path) -> np.ndarray:
@@ -36,11 +27,8 @@ def luminance_variance(exr: Path) -> np.ndarray:
 
 
 def write(profile_name: str) -> list[Path]:
-    exp = config.load(CONFIG)
-    profile = exp.profiles[profile_name]
-    suffix = paths.suffix(profile_name)
-    folder = paths.RENDERS / "pmc" / f"fig04{suffix}"
-    folder.mkdir(parents=True, exist_ok=True)
+    run = figure_run(CONFIG, profile_name, "pmc", "fig04")
+    exp, profile, suffix, folder = run.exp, run.profile, run.suffix, run.folder
     runs = {"initial": ("uniform", 2), "alpha": ("pmc_ip", 6), "pmc_ip": ("pmc_ip", 10),
             "uniform": ("uniform", 10)}
     files = {}
@@ -49,23 +37,23 @@ def write(profile_name: str) -> list[Path]:
         files[name] = folder / f"{name}.exr"
         renders.render(exp, profile, exp.techniques[technique].integrator, files[name], seed=0,
                        spp=spp, threads=2)
-    scale = max(float(np.percentile(rgb(files["uniform"]), 99)), 1e-6)
+    scale = float(np.percentile(rgb(files["uniform"]), 99))
 
-    def shown(exr: Path) -> np.ndarray:
+    def display(exr: Path) -> np.ndarray:
         # The unbiased image has negative pixels (a control variate's overshoot): black here.
-        return np.clip(np.clip(rgb(exr) / scale, 0, None) ** (1 / 2.2), 0, 1)
+        return shown(rgb(exr), scale)
 
     fig, axes = plt.subplots(2, 4, figsize=(12, 9.5))
-    axes[0, 0].imshow(shown(files["initial"]))
+    axes[0, 0].imshow(display(files["initial"]))
     axes[0, 0].set_title("initial image, 2 spp")
     (alpha,) = channels(files["alpha"], ["pmc.alpha"])
     im = axes[0, 1].imshow(alpha, cmap="magma", norm=LogNorm(vmin=max(alpha.min(), 1e-3),
                                                               vmax=max(alpha.max(), 1e-2)))
     axes[0, 1].set_title("α from it (|P|·α)")
     fig.colorbar(im, ax=axes[0, 1], fraction=0.046)
-    axes[0, 2].imshow(shown(files["pmc_ip"]))
+    axes[0, 2].imshow(display(files["pmc_ip"]))
     axes[0, 2].set_title("PMC-IP, 2 + 4 + 4")
-    axes[0, 3].imshow(shown(files["uniform"]))
+    axes[0, 3].imshow(display(files["uniform"]))
     axes[0, 3].set_title("uniform, 10 spp")
     variances = [luminance_variance(files[n]) for n in ("pmc_ip", "uniform")]
     positive = np.concatenate([v[v > 0] for v in variances])

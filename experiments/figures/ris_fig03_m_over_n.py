@@ -10,35 +10,25 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-import OpenImageIO as oiio  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
-from harness import config, paths, plots, renders  # noqa: E402
+from harness import paths, plots, renders  # noqa: E402
+
+from .images import channels, figure_run, rgb, shown  # noqa: E402
 
 CONFIG = paths.CONFIGS / "ris" / "fig03_dragon_one_ray.json"
 
 
-def channel(image: oiio.ImageBuf, name: str) -> np.ndarray:
-    index = image.spec().channelindex(name)
-    return image.get_pixels(oiio.FLOAT)[:, :, index]
-
-
 def write(profile_name: str) -> list[Path]:
-    exp = config.load(CONFIG)
-    profile = exp.profiles[profile_name]
-    suffix = paths.suffix(profile_name)
-    exr = paths.RENDERS / "ris" / f"fig03_m_over_n{suffix}.exr"
-    exr.parent.mkdir(parents=True, exist_ok=True)
-    integrator = exp.techniques["ris_optimal"].integrator
-    renders.check_scene(exp, profile, integrator)  # SceneRejected when an asset is absent
-    renders.render(exp, profile, integrator, exr, seed=0, spp=1, threads=2)
-    image = oiio.ImageBuf(str(exr))
-    ratio = channel(image, "ris.mOverN")
-    rgb = np.stack([channel(image, c) for c in "RGB"], axis=-1)
-    shown = np.clip((rgb / max(np.percentile(rgb, 99), 1e-6)) ** (1 / 2.2), 0, 1)
+    run = figure_run(CONFIG, profile_name, "ris", "fig03_m_over_n")
+    exr = run.folder / "ris_optimal.exr"
+    integrator = run.exp.techniques["ris_optimal"].integrator
+    renders.check_scene(run.exp, run.profile, integrator)  # SceneRejected when an asset is absent
+    renders.render(run.exp, run.profile, integrator, exr, seed=0, spp=1, threads=2)
+    (ratio,) = channels(exr, ["ris.mOverN"])
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
-    left.imshow(shown)
+    left.imshow(shown(rgb(exr)))
     left.set_title("optimal RIS, 1 primary ray per pixel")
     masked = np.ma.masked_less_equal(ratio, 0)
     lo, hi = max(float(masked.min()), 1e-3), max(float(masked.max()), 1e-2)
@@ -49,6 +39,6 @@ def write(profile_name: str) -> list[Path]:
     for ax in (left, right):
         ax.set_xticks([])
         ax.set_yticks([])
-    out = paths.PLOTS / "ris" / f"fig03_m_over_n{suffix}.png"
+    out = paths.PLOTS / "ris" / f"fig03_m_over_n{run.suffix}.png"
     plots.save(fig, out)
     return [out]

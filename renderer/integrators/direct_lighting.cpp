@@ -21,7 +21,8 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
             const Frame& frame, const Vec3& wo, Rgb* radiance) {
             if (estimator_->lightSamples() > 0) {
                 const Rgb unscaled(1.0f);
-                const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays};
+                const VertexOutput<StandardSampling> out{standard,  0,    unscaled,
+                                                         *radiance, rays, records_.at(x, y)};
                 SurfaceVertex<false, StandardSampling> point(
                     out, hit, material, ctx, frame, wo, nullptr,
                     static_cast<float>(tracedBsdfSamples()));

@@ -11,6 +11,7 @@
 
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
+#include "integrators/pixel_records.h"
 #include "integrators/scattering_vertex.h"
 #include "integrators/standard_sampling.h"
 
@@ -75,6 +76,10 @@ class DirectLighting final : public SampleIntegrator {
     void prepare(const Scene& scene) override {
         estimator_->prepare(scene, "/integrator/estimator");
     }
+    void beginImage(int width, int height) override {
+        records_.begin(width, height, estimator_->pixelRecords());
+    }
+    std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }
 
   private:
     // The BSDF samples traced per pixel sample.
@@ -89,6 +94,8 @@ class DirectLighting final : public SampleIntegrator {
 
     std::unique_ptr<DirectLightingEstimator> estimator_;
     uint32_t bsdfSamples_;
+    // Written by estimate() at pixels its caller renders alone (render_schedule.h).
+    mutable PixelRecords records_;
 };
 
 }  // namespace rr

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "integrators/integrator.h"
+#include "integrators/pixel_records.h"
 #include "integrators/shading_point.h"
 
 namespace rr {
@@ -43,6 +44,10 @@ class DirectLightingEstimator {
     // False for estimators that sample directions and find emission along them
     // (ShadingPoint::incidentEmission), which scenes with media do not provide.
     virtual bool worksInMedia() const { return true; }
+    // The fields the estimator records per pixel at first hits (ShadingPoint::record), which
+    // the `direct` integrator averages over each pixel's samples and writes as channels of
+    // these names; no names: none.
+    virtual PixelRecordLayout pixelRecords() const { return {}; }
 
     // Called once the scene is built, before rendering: an estimator that needs something of
     // the scene builds it here (two-stage sampling's summed-area table), and throws ConfigError

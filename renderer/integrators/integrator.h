@@ -71,6 +71,9 @@ class Integrator {
 
 class SampleIntegrator : public Integrator {
   public:
+    // Called when a width × height render is scheduled, before any estimate(): an integrator
+    // that keeps per-pixel records sizes them here.
+    virtual void beginImage(int /*width*/, int /*height*/) {}
     virtual Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                          RayCounters& rays) const = 0;
 };

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "integrators/medium_tracking.h"
+#include "integrators/pixel_records.h"
 #include "integrators/shading_point.h"
 #include "integrators/standard_sampling.h"
 
@@ -50,6 +51,7 @@ struct VertexOutput {
     const Rgb& throughput;
     Rgb& radiance;
     RayCounters& rays;
+    double* record = nullptr;  // the pixel's record (pixel_records.h), at a kept first hit
 
     void add(const Rgb& contribution) const {
         const Rgb scaled = throughput * contribution;
@@ -163,6 +165,9 @@ class SurfaceVertex final : public ShadingPoint {
         return rr::infiniteLightPdf(out_.guide, out_.vertex, hit_.position, wi, radiance);
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
+    void record(std::span<const float> values) override {
+        if (out_.record) PixelRecords::add(out_.record, values);
+    }
 
   private:
     VertexOutput<Guide> out_;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "math/frame.h"
 #include "math/rgb.h"
@@ -96,6 +97,10 @@ class ShadingPoint {
     // what the path carries to this point (a technique's guide hears of it too: TAIS credits
     // its light maps with it).
     virtual void add(const Rgb& contribution) = 0;
+    // An estimator's per-pixel record at this point (DirectLightingEstimator::
+    // pixelRecordNames): kept when the point is a pixel sample's first hit and the integrator
+    // keeps records, ignored otherwise.
+    virtual void record(std::span<const float> /*values*/) {}
 };
 
 }  // namespace rr

@@ -8,8 +8,9 @@
 namespace rr {
 
 BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) {
-    const SampleIntegrator* samples = integrator.get();
+    SampleIntegrator* samples = integrator.get();
     return {std::move(integrator), [samples](const ScheduleInputs& in) {
+                samples->beginImage(in.width, in.height);
                 return std::make_unique<UniformPasses>(in.scene, *samples, in.width, in.height,
                                                        in.spp, in.timeLimit);
             }};

@@ -104,6 +104,48 @@ TEST(PmcHiUnbiasedNegativeControl, AFloor2Point5PercentDarkerIsRejected) {
     EXPECT_GT(w.z, threshold()) << w.where;
 }
 
+// Fig. 7's α maps (`alpha_maps`): one channel per component, each pixel's α^(T) averaged over
+// its samples. They sum to one where the camera ray found a surface to estimate at and are zero
+// elsewhere; the BSDF's and the lights' keep their floors; they are bit-identical on one and two
+// threads; and keeping them changes no pixel (the extra adaptation draws no random numbers).
+TEST(PmcHiAlphaMaps, WeightsSumToOneKeepTheirFloorsAndChangeNoPixel) {
+    const Case& c = kCases[0];
+    const std::string withMaps =
+        R"({"type":"direct","estimator":{"type":"pmc_hi","samples":8,"alpha_maps":true}})";
+    const LoadedScene maps = scene(c, withMaps);
+    const TestRender one = renderScene(maps, 3, 5, 1);
+    const std::vector<AuxiliaryChannel> a = maps.integrator->auxiliaryChannels();
+    const TestRender two = renderScene(maps, 3, 5, 2);
+    const std::vector<AuxiliaryChannel> b = maps.integrator->auxiliaryChannels();
+    const LoadedScene plain =
+        scene(c, R"({"type":"direct","estimator":{"type":"pmc_hi","samples":8}})");
+    const TestRender without = renderScene(plain, 3, 5, 2);
+    EXPECT_TRUE(plain.integrator->auxiliaryChannels().empty());
+
+    ASSERT_EQ(a.size(), 4u);  // the BSDF, two lights, the cone
+    EXPECT_EQ(a[0].name, "pmc_hi.alpha.bsdf");
+    EXPECT_EQ(a[3].name, "pmc_hi.alpha.cone");
+    const double floor = 0.05 / (1 + 0.05 * 3);  // renormalised with every floor applied
+    int estimated = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const size_t i = size_t(y) * kSize + x;
+            double sum = 0;
+            for (size_t k = 0; k < a.size(); ++k) {
+                ASSERT_EQ(a[k].values[i], b[k].values[i]) << a[k].name << " at " << x << ", " << y;
+                sum += a[k].values[i];
+            }
+            ASSERT_EQ(one.film.mean(x, y), without.film.mean(x, y)) << x << ", " << y;
+            ASSERT_EQ(two.film.mean(x, y), without.film.mean(x, y)) << x << ", " << y;
+            if (sum == 0) continue;
+            ++estimated;
+            EXPECT_NEAR(sum, 1.0, 1e-5) << x << ", " << y;
+            for (size_t k = 0; k < 3; ++k)
+                EXPECT_GE(a[k].values[i], floor - 1e-6) << a[k].name << " at " << x << ", " << y;
+        }
+    EXPECT_GT(estimated, kSize * kSize / 2);
+}
+
 std::string refusal(const std::vector<std::string>& overrides) {
     try {
         loadSceneFile("pmc_fig6_checker_floor.json", overrides);

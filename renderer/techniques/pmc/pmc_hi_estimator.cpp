@@ -62,7 +62,19 @@ nlohmann::json PmcHiEstimator::parameters() const {
             {"samples", settings_.samples},
             {"iterations", settings_.iterations},
             {"cone_share", settings_.coneShare},
-            {"floor", settings_.floor}};
+            {"floor", settings_.floor},
+            {"alpha_maps", settings_.alphaMaps}};
+}
+
+PixelRecordLayout PmcHiEstimator::pixelRecords() const {
+    if (!settings_.alphaMaps) return {};
+    PixelRecordLayout layout{{"pmc_hi.alpha.bsdf"},
+                             "PMC-HI's weight of this mixture component after the estimate's "
+                             "iterations (alpha^(T), fig. 7), mean over the pixel's first hits"};
+    for (const Light* light : lights_)
+        layout.names.push_back("pmc_hi.alpha.light" + std::to_string(light->index()));
+    layout.names.push_back("pmc_hi.alpha.cone");
+    return layout;
 }
 
 void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
@@ -234,10 +246,16 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
                 d.weight = (d.f * d.le * d.tr).luminance() / density;
                 point.add(point.contribution(d.f, d.le, d.tr, sampleWeight, density));
             });
-        if (t + 1 < iterations) {
+        if (t + 1 < iterations || settings_.alphaMaps) {
             const Kernel previous = kernel;
             adapt(previous, draws.data(), drawn, &kernel);
         }
+    }
+    if (settings_.alphaMaps) {
+        std::array<float, kMaxComponents> alpha;
+        for (uint32_t k = 0; k < m; ++k)
+            alpha[k] = static_cast<float>(kernel.alpha[k]);
+        point.record(std::span<const float>(alpha.data(), m));
     }
 }
 

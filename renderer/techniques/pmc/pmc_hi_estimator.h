@@ -38,6 +38,7 @@ struct PmcHiSettings {
     uint32_t iterations = 2;
     double coneShare = 0.2;  // α_cone after iteration 0
     double floor = 0.05;     // least α of the BSDF and of each light
+    bool alphaMaps = false;  // record α^(T) at first hits (fig. 7)
 };
 
 class PmcHiEstimator final : public DirectLightingEstimator {
@@ -56,6 +57,9 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     bool worksInMedia() const override { return false; }
     void prepare(const Scene& scene, const std::string& pointer) override;
     void estimate(ShadingPoint& point) const override;
+    // With alpha_maps: the α each estimate would use next, α^(T) after its T iterations (fig.
+    // 7 shows α^(2)), per component: pmc_hi.alpha.bsdf, .light<index>, .cone.
+    PixelRecordLayout pixelRecords() const override;
 
     // m: the BSDF, one per light, the cone.
     uint32_t components() const { return uint32_t(lights_.size()) + 2; }

@@ -45,6 +45,7 @@ nlohmann::json PmcIpIntegrator::parameters() const {
 }
 
 std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& in) {
+    pixelIntegrator_->beginImage(in.width, in.height);
     const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
     if (in.spp < initial)
         throw ConfigError("/render/spp", "pmc_ip renders " + std::to_string(initial) +
