@@ -22,7 +22,7 @@ Rgb DirectLighting::estimate(const Scene& scene, int x, int y, const PixelSample
             if (estimator_->lightSamples() > 0) {
                 const Rgb unscaled(1.0f);
                 const VertexOutput<StandardSampling> out{standard,  0,    unscaled,
-                                                         *radiance, rays, records_.at(x, y)};
+                                                         *radiance, rays, records_.slot(x, y)};
                 SurfaceVertex<false, StandardSampling> point(
                     out, hit, material, ctx, frame, wo, nullptr,
                     static_cast<float>(tracedBsdfSamples()));

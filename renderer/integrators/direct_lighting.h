@@ -54,7 +54,7 @@ Rgb estimateAtFirstHit(const Scene& scene, StandardSampling& standard, int x, in
         [&](const SurfaceHit& hit, const Material& material, const ShadingContext& ctx,
             const Frame& frame, const Vec3& wo, Rgb* radiance) {
             const Rgb unscaled(1.0f);
-            const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays};
+            const VertexOutput<StandardSampling> out{standard, 0, unscaled, *radiance, rays, {}};
             SurfaceVertex<false, StandardSampling> point(out, hit, material, ctx, frame, wo,
                                                          nullptr, 0);
             use(point);
@@ -76,9 +76,10 @@ class DirectLighting final : public SampleIntegrator {
     void prepare(const Scene& scene) override {
         estimator_->prepare(scene, "/integrator/estimator");
     }
-    void beginImage(int width, int height) override {
-        records_.begin(width, height, estimator_->pixelRecords());
+    void beginImage(int width, int height, bool iterated) override {
+        records_.begin(width, height, iterated, estimator_->pixelRecords());
     }
+    void commitPixelRecords() override { records_.commit(); }
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }
 
   private:

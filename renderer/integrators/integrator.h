@@ -72,8 +72,12 @@ class Integrator {
 class SampleIntegrator : public Integrator {
   public:
     // Called when a width × height render is scheduled, before any estimate(): an integrator
-    // that keeps per-pixel records sizes them here.
-    virtual void beginImage(int /*width*/, int /*height*/) {}
+    // that keeps per-pixel records sizes them here. `iterated`: the schedule renders in
+    // iterations and calls commitPixelRecords() between them.
+    virtual void beginImage(int /*width*/, int /*height*/, bool /*iterated*/) {}
+    // Between the iterations of a schedule that renders in iterations (PMC-IP): the per-pixel
+    // records so far become what the next iteration's estimates start from (pixel_records.h).
+    virtual void commitPixelRecords() {}
     virtual Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                          RayCounters& rays) const = 0;
 };

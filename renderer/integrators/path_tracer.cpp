@@ -29,7 +29,7 @@ void PathTracer::prepare(const Scene& scene) {
 Rgb PathTracer::estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                          RayCounters& rays) const {
     StandardSampling standard(scene, sample);
-    return tracePath(scene, standard, x, y, settings_, *nee_, rays);
+    return tracePath(scene, standard, x, y, settings_, *nee_, rays, records_.slot(x, y));
 }
 
 }  // namespace rr

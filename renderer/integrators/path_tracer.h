@@ -26,6 +26,7 @@
 
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
+#include "integrators/pixel_records.h"
 
 namespace rr {
 
@@ -54,6 +55,12 @@ class PathTracer final : public SampleIntegrator {
     uint32_t decisionRepeats() const override { return std::max(1u, nee_->decisionRepeats()); }
     // Refuses an estimator that cannot work in the scene's media.
     void prepare(const Scene& scene) override;
+    // The estimator's records at each pixel sample's first hit (pixel_records.h).
+    void beginImage(int width, int height, bool iterated) override {
+        records_.begin(width, height, iterated, nee_->pixelRecords());
+    }
+    void commitPixelRecords() override { records_.commit(); }
+    std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }
 
   private:
     PathTracer(std::string name, const PathSettings& settings,
@@ -63,6 +70,8 @@ class PathTracer final : public SampleIntegrator {
     std::string name_;
     PathSettings settings_;
     std::unique_ptr<DirectLightingEstimator> nee_;
+    // Written by estimate() at pixels its caller renders alone (render_schedule.h).
+    mutable PixelRecords records_;
 };
 
 }  // namespace rr

@@ -30,8 +30,10 @@ class PathWalk {
   public:
     // `weight`: the camera ray's sampling weight (1 unless a guide warped the camera's
     // decisions).
+    // `pixel`: the pixel's records, which the first vertex's estimate may keep.
     PathWalk(const Scene& scene, Guide& guide, RayCounters& rays, const PathSettings& settings,
-             const DirectLightingEstimator& nee, const Ray& cameraRay, float weight = 1)
+             const DirectLightingEstimator& nee, const Ray& cameraRay, float weight = 1,
+             PixelRecordSlot pixel = {})
         : scene_(scene),
           guide_(guide),
           sample_(guide.sample()),
@@ -39,6 +41,7 @@ class PathWalk {
           maxDepth_(settings.maxDepth < 0 ? PathTracer::kDepthCap : settings.maxDepth),
           rrDepth_(settings.rrDepth),
           nee_(nee),
+          pixel_(pixel),
           ray_(cameraRay),
           medium_(scene.medium()),
           throughput_(weight) {}
@@ -73,7 +76,10 @@ class PathWalk {
     template <class Point>
     void estimateDirectLight(Point&& point);
     // Where a vertex's next-event estimate goes.
-    VertexOutput<Guide> output() { return {guide_, vertex(), throughput_, radiance_, rays_}; }
+    VertexOutput<Guide> output() {
+        return {guide_,    vertex(), throughput_,
+                radiance_, rays_,    depth_ == 0 ? pixel_ : PixelRecordSlot{}};
+    }
     // The weight of emission the path finds against next-event estimation from the previous
     // vertex, whose light sampling picks the same point with density lightPdf().
     template <class LightPdf>
@@ -87,6 +93,7 @@ class PathWalk {
     RayCounters& rays_;
     const int maxDepth_, rrDepth_;
     const DirectLightingEstimator& nee_;
+    const PixelRecordSlot pixel_;
 
     Ray ray_;
     const Medium* medium_;  // the medium the ray travels through (nullptr: vacuum)
@@ -241,13 +248,13 @@ void PathWalk<kMedia, Guide>::estimateDirectLight(Point&& point) {
 // without media as the scene needs.
 template <PathGuide Guide>
 Rgb tracePath(const Scene& scene, Guide& guide, int x, int y, const PathSettings& settings,
-              const DirectLightingEstimator& nee, RayCounters& rays) {
+              const DirectLightingEstimator& nee, RayCounters& rays, PixelRecordSlot pixel = {}) {
     float weight;
     const Ray ray = guide.cameraRay(x, y, &weight);
     ++rays.camera;
     if (scene.features().media)
-        return PathWalk<true, Guide>(scene, guide, rays, settings, nee, ray, weight).run();
-    return PathWalk<false, Guide>(scene, guide, rays, settings, nee, ray, weight).run();
+        return PathWalk<true, Guide>(scene, guide, rays, settings, nee, ray, weight, pixel).run();
+    return PathWalk<false, Guide>(scene, guide, rays, settings, nee, ray, weight, pixel).run();
 }
 
 }  // namespace rr

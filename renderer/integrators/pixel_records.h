@@ -1,16 +1,22 @@
 // Per-pixel records an estimator keeps at pixel samples' first hits besides radiance
-// (DirectLightingEstimator::pixelRecordNames: PMC-HI's final mixture weights, Lai et al. 2007
+// (DirectLightingEstimator::pixelRecords: PMC-HI's final mixture weights, Lai et al. 2007
 // fig. 7), summed per pixel with a count and written as the mean over the pixel's samples that
-// recorded something. Each pixel is only written by the one unit of work rendering it, in
-// sample order, so the sums are bit-identical for any thread count.
+// recorded something. Between the iterations of a schedule that renders in iterations (PMC-IP)
+// the means so far are committed, and the next iteration's estimates at the pixel start from
+// them (§6.1's feedback). Each pixel is only written by the one unit of work rendering it, in
+// sample order, and commits happen between rounds, so everything is bit-identical for any
+// thread count.
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "config/config_error.h"
 #include "integrators/integrator.h"
 
 namespace rr {
@@ -18,25 +24,59 @@ namespace rr {
 struct PixelRecordLayout {
     std::vector<std::string> names;  // the channels
     std::string description;         // what each holds (the output's channel list)
+    // The estimator's key that reads the committed records (PMC-HI's `feedback`), which only
+    // a schedule in iterations commits: refused under any other; empty: none.
+    std::string readsCommitted;
+};
+
+// One pixel's place in the records, as a first-hit vertex sees it.
+struct PixelRecordSlot {
+    double* sums = nullptr;        // where its record goes, then the count; nullptr: none kept
+    const float* start = nullptr;  // the means committed last; nullptr: none yet
+    uint32_t fields = 0;
+
+    // Adds one sample's values to the pixel's record.
+    void add(std::span<const float> values) const {
+        if (!sums) return;
+        if (values.size() != fields) throw std::logic_error("a pixel record of the wrong size");
+        for (size_t i = 0; i < fields; ++i)
+            sums[i] += values[i];
+        sums[fields] += 1;
+    }
 };
 
 class PixelRecords {
   public:
-    // Sized for a width × height image of the layout's fields (none: nothing is kept).
-    void begin(int width, int height, PixelRecordLayout layout) {
+    // Sized for a width × height image of the layout's fields (none: nothing is kept);
+    // `iterated`: the schedule commits the records between iterations.
+    void begin(int width, int height, bool iterated, PixelRecordLayout layout) {
+        if (!iterated && !layout.readsCommitted.empty())
+            throw ConfigError("/integrator/estimator/" + layout.readsCommitted,
+                              "starts from the records of earlier iterations, which only pmc_ip "
+                              "renders: wrap the integrator in pmc_ip");
         layout_ = std::move(layout);
         width_ = width;
         sums_.assign(layout_.names.empty() ? 0 : size_t(width) * height * stride(), 0.0);
+        starts_.clear();
     }
-    // Where pixel (x, y)'s record goes, or nullptr when none is kept.
-    double* at(int x, int y) {
-        return sums_.empty() ? nullptr : &sums_[(size_t(y) * width_ + x) * stride()];
+    PixelRecordSlot slot(int x, int y) {
+        if (sums_.empty()) return {};
+        const size_t pixel = size_t(y) * width_ + x;
+        const float* start = nullptr;
+        if (!starts_.empty() && starts_[pixel * stride() + fields()] > 0)
+            start = &starts_[pixel * stride()];
+        return {&sums_[pixel * stride()], start, uint32_t(fields())};
     }
-    // Adds one sample's values to a pixel's record (`record` from at()).
-    static void add(double* record, std::span<const float> values) {
-        for (size_t i = 0; i < values.size(); ++i)
-            record[i] += values[i];
-        record[values.size()] += 1;
+    // The means so far become the pixels' starts (pixels without a record have none).
+    void commit() {
+        starts_.assign(sums_.size(), 0.0f);
+        for (size_t i = 0; i < sums_.size(); i += stride()) {
+            const double count = sums_[i + fields()];
+            if (count == 0) continue;
+            for (size_t f = 0; f < fields(); ++f)
+                starts_[i + f] = static_cast<float>(sums_[i + f] / count);
+            starts_[i + fields()] = 1;
+        }
     }
     // The means as output channels (0 where no sample recorded).
     std::vector<AuxiliaryChannel> channels() const {
@@ -56,11 +96,13 @@ class PixelRecords {
     }
 
   private:
-    size_t stride() const { return layout_.names.size() + 1; }  // the fields and the count
+    size_t fields() const { return layout_.names.size(); }
+    size_t stride() const { return fields() + 1; }  // the fields and the count (or a flag)
 
     PixelRecordLayout layout_;
     int width_ = 0;
     std::vector<double> sums_;
+    std::vector<float> starts_;  // per pixel: the committed means and 1, or zeros
 };
 
 }  // namespace rr

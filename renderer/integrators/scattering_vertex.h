@@ -51,7 +51,7 @@ struct VertexOutput {
     const Rgb& throughput;
     Rgb& radiance;
     RayCounters& rays;
-    double* record = nullptr;  // the pixel's record (pixel_records.h), at a kept first hit
+    PixelRecordSlot pixel;  // the pixel's records (pixel_records.h), at a first hit
 
     void add(const Rgb& contribution) const {
         const Rgb scaled = throughput * contribution;
@@ -165,9 +165,8 @@ class SurfaceVertex final : public ShadingPoint {
         return rr::infiniteLightPdf(out_.guide, out_.vertex, hit_.position, wi, radiance);
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
-    void record(std::span<const float> values) override {
-        if (out_.record) PixelRecords::add(out_.record, values);
-    }
+    void record(std::span<const float> values) override { out_.pixel.add(values); }
+    const float* recordedStart() const override { return out_.pixel.start; }
 
   private:
     VertexOutput<Guide> out_;

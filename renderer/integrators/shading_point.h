@@ -97,10 +97,13 @@ class ShadingPoint {
     // what the path carries to this point (a technique's guide hears of it too: TAIS credits
     // its light maps with it).
     virtual void add(const Rgb& contribution) = 0;
-    // An estimator's per-pixel record at this point (DirectLightingEstimator::
-    // pixelRecordNames): kept when the point is a pixel sample's first hit and the integrator
+    // An estimator's per-pixel record at this point (DirectLightingEstimator::pixelRecords):
+    // kept when the point is a pixel sample's first hit and the integrator
     // keeps records, ignored otherwise.
     virtual void record(std::span<const float> /*values*/) {}
+    // The pixel's records as last committed (PixelRecords::commit), at a first hit whose
+    // integrator keeps them: one value per field; nullptr when there are none.
+    virtual const float* recordedStart() const { return nullptr; }
 };
 
 }  // namespace rr

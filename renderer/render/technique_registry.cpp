@@ -10,7 +10,7 @@ namespace rr {
 BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) {
     SampleIntegrator* samples = integrator.get();
     return {std::move(integrator), [samples](const ScheduleInputs& in) {
-                samples->beginImage(in.width, in.height);
+                samples->beginImage(in.width, in.height, /*iterated=*/false);
                 return std::make_unique<UniformPasses>(in.scene, *samples, in.width, in.height,
                                                        in.spp, in.timeLimit);
             }};

@@ -107,7 +107,9 @@ TEST(PmcHiUnbiasedNegativeControl, AFloor2Point5PercentDarkerIsRejected) {
 // Fig. 7's α maps (`alpha_maps`): one channel per component, each pixel's α^(T) averaged over
 // its samples. They sum to one where the camera ray found a surface to estimate at and are zero
 // elsewhere; the BSDF's and the lights' keep their floors; they are bit-identical on one and two
-// threads; and keeping them changes no pixel (the extra adaptation draws no random numbers).
+// threads (the two-thread render after another render of the same scene, which must not leave
+// records behind); and keeping them changes no pixel (the extra adaptation draws no random
+// numbers).
 TEST(PmcHiAlphaMaps, WeightsSumToOneKeepTheirFloorsAndChangeNoPixel) {
     const Case& c = kCases[0];
     const std::string withMaps =
@@ -115,6 +117,7 @@ TEST(PmcHiAlphaMaps, WeightsSumToOneKeepTheirFloorsAndChangeNoPixel) {
     const LoadedScene maps = scene(c, withMaps);
     const TestRender one = renderScene(maps, 3, 5, 1);
     const std::vector<AuxiliaryChannel> a = maps.integrator->auxiliaryChannels();
+    renderScene(maps, 2, 9, 2);
     const TestRender two = renderScene(maps, 3, 5, 2);
     const std::vector<AuxiliaryChannel> b = maps.integrator->auxiliaryChannels();
     const LoadedScene plain =
@@ -146,9 +149,11 @@ TEST(PmcHiAlphaMaps, WeightsSumToOneKeepTheirFloorsAndChangeNoPixel) {
     EXPECT_GT(estimated, kSize * kSize / 2);
 }
 
+// The pointer of the error that loading the scene, or scheduling its render, raises.
 std::string refusal(const std::vector<std::string>& overrides) {
     try {
-        loadSceneFile("pmc_fig6_checker_floor.json", overrides);
+        const LoadedScene s = loadSceneFile("pmc_fig6_checker_floor.json", overrides);
+        s.schedule(ScheduleInputs{*s.scene, s.render.width, s.render.height, s.render.spp, 0, 1});
     } catch (const ConfigError& e) {
         return e.pointer();
     }
@@ -167,6 +172,10 @@ TEST(PmcHiSettings, PointLightsAndExcessiveFloorsAreRefused) {
     EXPECT_EQ(
         refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","samples":257}})"}),
         "/integrator/estimator/samples");
+    // Feedback starts from earlier PMC-IP iterations' records: nothing to start from without.
+    EXPECT_EQ(
+        refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","feedback":true}})"}),
+        "/integrator/estimator/feedback");
 }
 
 }  // namespace

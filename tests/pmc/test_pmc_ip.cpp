@@ -78,9 +78,15 @@ constexpr const char* kScene = "pmc_fig6_checker_floor.json";
 constexpr int kSize = 32, kBlock = 8;
 constexpr uint32_t kSeeds = 1024;
 
-std::string pmcIp(const std::string& image) {
+constexpr const char* kDirectMis =
+    R"({"type":"direct","strategy":"mis","light_samples":1,"bsdf_samples":1})";
+// §6.1's feedback: PMC-HI at the path tracer's first hits starts from the pixel's α so far.
+constexpr const char* kPathPmcHiFeedback =
+    R"({"type":"path_mis","estimator":{"type":"pmc_hi","feedback":true}})";
+
+std::string pmcIp(const std::string& image, const std::string& integrator = kDirectMis) {
     return R"(/integrator={"type":"pmc_ip","initial_spp":2,"iteration_spp":4,"image":")" + image +
-           R"(","integrator":{"type":"direct","strategy":"mis","light_samples":1,"bsdf_samples":1}})";
+           R"(","integrator":)" + integrator + "}";
 }
 
 LoadedScene checkerFloor(const std::vector<std::string>& extra) {
@@ -154,8 +160,9 @@ double largestT(const LoadedScene& scene, uint32_t spp, std::string* where) {
     return worst;
 }
 
+// The unbiased cases (MIS, PMC-HI with feedback) × channels × (image + blocks).
 int tests() {
-    return 3 * (1 + (kSize / kBlock) * (kSize / kBlock));
+    return 2 * 3 * (1 + (kSize / kBlock) * (kSize / kBlock));
 }
 
 double threshold() {
@@ -181,6 +188,14 @@ Outcome compareAt10Spp(const std::vector<std::string>& overrides) {
 // uniform render.
 TEST(PmcIpUnbiased, TheIterationsImageMatchesALongUniformRender) {
     const Outcome o = compareAt10Spp({pmcIp("iterations")});
+    EXPECT_LT(o.t, threshold()) << o.where;
+}
+
+// With §6.1's feedback under the path tracer (on this scene, whose only surface is the floor,
+// it converges to the direct lighting): each iteration's PMC-HI estimates at first hits start
+// from α fixed before the iteration, so the image stays unbiased.
+TEST(PmcIpUnbiased, PmcHiWithFeedbackMatchesALongUniformRender) {
+    const Outcome o = compareAt10Spp({pmcIp("iterations", kPathPmcHiFeedback)});
     EXPECT_LT(o.t, threshold()) << o.where;
 }
 
@@ -219,6 +234,35 @@ TEST(PmcIpDeterminism, ImagesAndCountsAreIdenticalOnOneAndTwoThreads) {
             varied += one.film.sampleCount(x, y) != 14;
         }
     EXPECT_GT(varied, kSize * kSize / 4) << "the allocation should vary between pixels";
+}
+
+// Feedback acts (the same seed renders other pixels than without it) and, committed between
+// iterations only, leaves every pixel bit-identical on one and two threads.
+TEST(PmcIpFeedback, ChangesTheImageAndIsIdenticalOnOneAndTwoThreads) {
+    const LoadedScene feedback = checkerFloor({pmcIp("iterations", kPathPmcHiFeedback)});
+    const LoadedScene plain =
+        checkerFloor({pmcIp("iterations", R"({"type":"path_mis","estimator":{"type":"pmc_hi"}})")});
+    const TestRender film = renderScene(feedback, 10, 3, 1);
+    const PixelEstimates one = feedback.integrator->pixelEstimates();
+    renderScene(feedback, 10, 3, 2);
+    const PixelEstimates two = feedback.integrator->pixelEstimates();
+    renderScene(plain, 10, 3, 2);
+    const PixelEstimates without = plain.integrator->pixelEstimates();
+    ASSERT_EQ(one.values.size(), size_t(kSize * kSize));
+    // Pixels that got samples after the initial image (which starts from no record) and whose
+    // first hit is the floor: feedback must change almost all of them.
+    int adapted = 0, changed = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const size_t k = size_t(y) * kSize + x;
+            ASSERT_EQ(one.values[k], two.values[k]) << x << ", " << y;
+            if (film.film.sampleCount(x, y) == 2 || one.values[k] == Rgb(0.0f)) continue;
+            ++adapted;
+            changed += !(one.values[k] == without.values[k]);
+        }
+    std::printf("%d of %d pixels changed\n", changed, adapted);
+    EXPECT_GT(adapted, kSize * kSize / 8);
+    EXPECT_GT(changed, adapted * 9 / 10);
 }
 
 // 11 spp with 2 initial samples and iterations of 4: 2 + 4 + 4 + 1, exactly 11 per pixel on

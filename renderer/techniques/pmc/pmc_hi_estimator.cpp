@@ -63,14 +63,16 @@ nlohmann::json PmcHiEstimator::parameters() const {
             {"iterations", settings_.iterations},
             {"cone_share", settings_.coneShare},
             {"floor", settings_.floor},
-            {"alpha_maps", settings_.alphaMaps}};
+            {"alpha_maps", settings_.alphaMaps},
+            {"feedback", settings_.feedback}};
 }
 
 PixelRecordLayout PmcHiEstimator::pixelRecords() const {
-    if (!settings_.alphaMaps) return {};
+    if (!records()) return {};
     PixelRecordLayout layout{{"pmc_hi.alpha.bsdf"},
                              "PMC-HI's weight of this mixture component after the estimate's "
-                             "iterations (alpha^(T), fig. 7), mean over the pixel's first hits"};
+                             "iterations (alpha^(T), fig. 7), mean over the pixel's first hits",
+                             settings_.feedback ? "feedback" : ""};
     for (const Light* light : lights_)
         layout.names.push_back("pmc_hi.alpha.light" + std::to_string(light->index()));
     layout.names.push_back("pmc_hi.alpha.cone");
@@ -196,14 +198,31 @@ void PmcHiEstimator::adapt(const Kernel& previous, const Draw* draws, uint32_t c
         next->alpha[cone] = settings_.coneShare;
         next->coneEntered = true;
     }
-    // Floors for the BSDF and the lights, which between them cover the integrand.
+    applyFloors(next);
+}
+
+// Floors for the BSDF and the lights, which between them cover the integrand.
+void PmcHiEstimator::applyFloors(Kernel* kernel) const {
+    const uint32_t m = components(), cone = m - 1;
     double sum = 0;
     for (uint32_t k = 0; k < m; ++k) {
-        if (k != cone) next->alpha[k] = std::max(next->alpha[k], settings_.floor);
-        sum += next->alpha[k];
+        if (k != cone) kernel->alpha[k] = std::max(kernel->alpha[k], settings_.floor);
+        sum += kernel->alpha[k];
     }
     for (uint32_t k = 0; k < m; ++k)
-        next->alpha[k] /= sum;
+        kernel->alpha[k] /= sum;
+}
+
+// Iteration 0's kernel: equal α over the BSDF and the lights, or with feedback the pixel's
+// committed α (§6.1); the cone off either way (its axis and angle are the point's own).
+PmcHiEstimator::Kernel PmcHiEstimator::initialKernel(const ShadingPoint& point) const {
+    const uint32_t m = components(), cone = m - 1;
+    Kernel kernel;
+    const float* start = settings_.feedback ? point.recordedStart() : nullptr;
+    for (uint32_t k = 0; k < cone; ++k)
+        kernel.alpha[k] = start ? double(start[k]) : 1.0 / double(m - 1);
+    if (start) applyFloors(&kernel);
+    return kernel;
 }
 
 // Draws iteration t's population of n from `kernel` into `draws` (deterministic mixture
@@ -230,11 +249,9 @@ uint32_t PmcHiEstimator::drawIteration(ShadingPoint& point, const Kernel& kernel
 }
 
 void PmcHiEstimator::estimate(ShadingPoint& point) const {
-    const uint32_t m = components(), cone = m - 1, n = populationSize();
+    const uint32_t m = components(), n = populationSize();
     const uint32_t iterations = settings_.iterations;
-    Kernel kernel;
-    for (uint32_t k = 0; k < cone; ++k)
-        kernel.alpha[k] = 1.0 / double(m - 1);
+    Kernel kernel = initialKernel(point);
     // One population per thread, reused: no allocation or clearing per shading point (each
     // draw resets its entry).
     thread_local std::vector<Draw> draws;
@@ -246,12 +263,13 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
                 d.weight = (d.f * d.le * d.tr).luminance() / density;
                 point.add(point.contribution(d.f, d.le, d.tr, sampleWeight, density));
             });
-        if (t + 1 < iterations || settings_.alphaMaps) {
+        // After the last iteration only for the records: α^(T), which no draw uses.
+        if (t + 1 < iterations || records()) {
             const Kernel previous = kernel;
             adapt(previous, draws.data(), drawn, &kernel);
         }
     }
-    if (settings_.alphaMaps) {
+    if (records()) {
         std::array<float, kMaxComponents> alpha;
         for (uint32_t k = 0; k < m; ++k)
             alpha[k] = static_cast<float>(kernel.alpha[k]);
@@ -262,6 +280,12 @@ void PmcHiEstimator::estimate(ShadingPoint& point) const {
 PmcHiEstimator::Kernel PmcHiEstimator::kernelOf(const MixtureParameters& p) const {
     if (p.alpha.size() != components())
         throw std::invalid_argument("pmc_hi: one α per mixture component");
+    double sum = 0;
+    for (double a : p.alpha)
+        sum += a;
+    if (std::abs(sum - 1) > 1e-9) throw std::invalid_argument("pmc_hi: α must sum to one");
+    if (p.alpha.back() > 0 && !(p.coneAngle > 0))
+        throw std::invalid_argument("pmc_hi: a cone with weight needs an angle");
     Kernel kernel;
     std::copy(p.alpha.begin(), p.alpha.end(), kernel.alpha.begin());
     kernel.coneAxis = normalize(p.coneAxis);

@@ -19,7 +19,10 @@
 //    α = `cone_share` and the others are scaled by 1 − cone_share; α_BSDF and every α_Lk are
 //    floored at `floor` before renormalising (so they stay above floor/(1 + floor·m)), so the
 //    components that cover the integrand never die.
-// Iteration 0 has equal α over the BSDF and the lights, the cone off. The estimate is the
+// Iteration 0 has equal α over the BSDF and the lights, the cone off; with `feedback` (§6.1),
+// at a pixel sample's first hit under pmc_ip, the pixel's mean final α of the earlier
+// iterations instead (the cone off, the floors applied): fixed before the iteration, so the
+// estimate stays unbiased. The estimate is the
 // unweighted mean of the T iterations' estimates: fixed weights, so unbiased. Emission that
 // the integrator's own BSDF samples find is excluded (this estimate covers it all). Area and
 // infinite lights only (a point light has no density over directions to mix); surfaces in
@@ -39,6 +42,9 @@ struct PmcHiSettings {
     double coneShare = 0.2;  // α_cone after iteration 0
     double floor = 0.05;     // least α of the BSDF and of each light
     bool alphaMaps = false;  // record α^(T) at first hits (fig. 7)
+    // §6.1: record α^(T) at first hits, and start a first hit's iteration 0 from the pixel's
+    // mean α^(T) as committed at the last PMC-IP iteration boundary.
+    bool feedback = false;
 };
 
 class PmcHiEstimator final : public DirectLightingEstimator {
@@ -97,6 +103,9 @@ class PmcHiEstimator final : public DirectLightingEstimator {
               uint32_t repeats, Draw* out) const;
     float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
     void adapt(const Kernel& previous, const Draw* draws, uint32_t count, Kernel* next) const;
+    Kernel initialKernel(const ShadingPoint& point) const;
+    void applyFloors(Kernel* kernel) const;
+    bool records() const { return settings_.alphaMaps || settings_.feedback; }
 
     PmcHiSettings settings_;
     std::vector<const Light*> lights_;

@@ -45,7 +45,7 @@ nlohmann::json PmcIpIntegrator::parameters() const {
 }
 
 std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& in) {
-    pixelIntegrator_->beginImage(in.width, in.height);
+    pixelIntegrator_->beginImage(in.width, in.height, /*iterated=*/true);
     const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
     if (in.spp < initial)
         throw ConfigError("/render/spp", "pmc_ip renders " + std::to_string(initial) +
@@ -90,6 +90,7 @@ bool PmcIpIntegrator::allocate(int iteration, std::vector<uint32_t>* counts) {
 // §4.2 then §4.3, timed: the adaptation's cost is part of the render.
 void PmcIpIntegrator::adapt(std::vector<uint32_t>* counts) {
     const auto start = std::chrono::steady_clock::now();
+    pixelIntegrator_->commitPixelRecords();  // §6.1: PMC-HI starts from the α so far
     const size_t pixels = pixels_.size();
     std::vector<double> luminance(pixels);
     for (size_t k = 0; k < pixels; ++k) {

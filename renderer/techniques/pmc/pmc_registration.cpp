@@ -53,6 +53,7 @@ std::unique_ptr<DirectLightingEstimator> makePmcHi(ObjectReader& json) {
     // A zero floor would let the BSDF and a light both die: no support where they cover.
     s.floor = json.getNumber("floor", 0.05, Range::open(0, 0.5));
     s.alphaMaps = json.getBool("alpha_maps", false);
+    s.feedback = json.getBool("feedback", false);
     return std::make_unique<PmcHiEstimator>(s);
 }
 
