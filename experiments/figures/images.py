@@ -42,3 +42,10 @@ def shown(pixels: np.ndarray, scale: float | None = None) -> np.ndarray:
     if scale is None:
         scale = float(np.percentile(pixels, 99))
     return np.clip(np.clip(pixels / max(scale, 1e-6), 0, None) ** (1 / 2.2), 0, 1)
+
+
+def crop(pixels: np.ndarray, window: tuple[float, float, float, float]) -> np.ndarray:
+    """The window (x, y, width, height, as fractions of the image) of an image."""
+    h, w = pixels.shape[:2]
+    x0, y0 = int(window[0] * w), int(window[1] * h)
+    return pixels[y0:y0 + max(1, int(window[3] * h)), x0:x0 + max(1, int(window[2] * w))]

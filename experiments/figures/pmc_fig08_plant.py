@@ -1,0 +1,62 @@
+"""PMC fig. 8: soft shadows and glossy surfaces on the plant (configs/experiments/pmc/
+tab2_plant.json, its techniques at equal draws, at its profile's resolution, seed 0). Top:
+PMC-HI and MIS; bottom: the soft shadows beside the pot, zoomed (PMC-HI left, MIS right, as
+the paper), and the reference's, each crop's RMSE against the reference's in its title."""
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from harness import paths, plots, renders  # noqa: E402
+
+from .images import crop, figure_run, rgb, shown  # noqa: E402
+
+CONFIG = paths.CONFIGS / "pmc" / "tab2_plant.json"
+# The shadows of the pot and the leaves on the table, as fractions: x, y, width, height.
+CROP = (0.48, 0.60, 0.36, 0.36)
+TECHNIQUES = [("pmc_hi_27", "PMC-HI"), ("mis_27", "MIS")]
+
+
+def write(profile_name: str) -> list[Path]:
+    run = figure_run(CONFIG, profile_name, "pmc", "fig08")
+    renders.check_scene(run.exp, run.profile, run.exp.techniques["mis_27"].integrator)
+    images = {}
+    for name, _ in TECHNIQUES:
+        exr = run.folder / f"{name}.exr"
+        renders.render(run.exp, run.profile, run.exp.techniques[name].integrator, exr, seed=0,
+                       spp=run.profile.spp[0], threads=2)
+        images[name] = rgb(exr)
+    reference_file = paths.REFERENCE / "pmc" / f"tab2_plant.{profile_name}.exr"
+    full_reference = rgb(reference_file) if reference_file.exists() else None
+    reference = crop(full_reference, CROP) if full_reference is not None else None
+    scale = float(np.percentile(images["mis_27"], 99))
+
+    fig, axes = plt.subplots(2, 3, figsize=(13, 6.4),
+                             gridspec_kw={"height_ratios": [1.0, 1.1]})
+    for ax, (name, label) in zip(axes[0], TECHNIQUES):
+        ax.imshow(shown(images[name], scale))
+        ax.set_title(f"{label}, 27 draws per pixel", fontsize=10)
+    for ax, (name, label) in zip(axes[1], TECHNIQUES):
+        zoom = crop(images[name], CROP)
+        title = f"{label}, zoomed"
+        if reference is not None:
+            title += f": RMSE {np.sqrt(np.mean((zoom - reference) ** 2)):.4f}"
+        ax.imshow(shown(zoom, scale), interpolation="nearest")
+        ax.set_title(title, fontsize=10)
+    if full_reference is not None:
+        axes[0, 2].imshow(shown(full_reference, scale))
+        axes[0, 2].set_title("reference", fontsize=10)
+        axes[1, 2].imshow(shown(reference, scale), interpolation="nearest")
+        axes[1, 2].set_title("reference, zoomed", fontsize=10)
+    else:
+        axes[0, 2].axis("off")
+        axes[1, 2].axis("off")
+    for ax in axes.ravel():
+        ax.set_xticks([])
+        ax.set_yticks([])
+    out = paths.PLOTS / "pmc" / f"fig08_plant{run.suffix}.png"
+    plots.save(fig, out)
+    return [out]
