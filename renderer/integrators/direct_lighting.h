@@ -77,7 +77,8 @@ class DirectLighting final : public SampleIntegrator {
         estimator_->prepare(scene, "/integrator/estimator");
     }
     void beginImage(int width, int height, bool iterated) override {
-        records_.begin(width, height, iterated, estimator_->pixelRecords());
+        records_.begin(width, height, iterated, estimator_->pixelRecords(),
+                       "/integrator/estimator");
     }
     void commitPixelRecords() override { records_.commit(); }
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }

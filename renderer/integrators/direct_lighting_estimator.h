@@ -45,8 +45,8 @@ class DirectLightingEstimator {
     // (ShadingPoint::incidentEmission), which scenes with media do not provide.
     virtual bool worksInMedia() const { return true; }
     // The fields the estimator records per pixel at first hits (ShadingPoint::record), which
-    // the `direct` integrator averages over each pixel's samples and writes as channels of
-    // these names; no names: none.
+    // the `direct` and `path_mis` integrators average over each pixel's samples and write as
+    // channels of these names; no names: none.
     virtual PixelRecordLayout pixelRecords() const { return {}; }
 
     // Called once the scene is built, before rendering: an estimator that needs something of

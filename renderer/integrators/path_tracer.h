@@ -57,7 +57,7 @@ class PathTracer final : public SampleIntegrator {
     void prepare(const Scene& scene) override;
     // The estimator's records at each pixel sample's first hit (pixel_records.h).
     void beginImage(int width, int height, bool iterated) override {
-        records_.begin(width, height, iterated, nee_->pixelRecords());
+        records_.begin(width, height, iterated, nee_->pixelRecords(), "/integrator/estimator");
     }
     void commitPixelRecords() override { records_.commit(); }
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }

@@ -48,12 +48,15 @@ struct PixelRecordSlot {
 class PixelRecords {
   public:
     // Sized for a width × height image of the layout's fields (none: nothing is kept);
-    // `iterated`: the schedule commits the records between iterations.
-    void begin(int width, int height, bool iterated, PixelRecordLayout layout) {
+    // `iterated`: the schedule commits the records between iterations; `estimator`: the JSON
+    // pointer of the estimator that made the layout, for the error when it needs commits the
+    // schedule will not make.
+    void begin(int width, int height, bool iterated, PixelRecordLayout layout,
+               const std::string& estimator) {
         if (!iterated && !layout.readsCommitted.empty())
-            throw ConfigError("/integrator/estimator/" + layout.readsCommitted,
-                              "starts from the records of earlier iterations, which only pmc_ip "
-                              "renders: wrap the integrator in pmc_ip");
+            throw ConfigError(estimator + "/" + layout.readsCommitted,
+                              "starts from the records of earlier iterations, which only a "
+                              "schedule in iterations makes (pmc_ip)");
         layout_ = std::move(layout);
         width_ = width;
         sums_.assign(layout_.names.empty() ? 0 : size_t(width) * height * stride(), 0.0);

@@ -22,11 +22,10 @@
 // Iteration 0 has equal α over the BSDF and the lights, the cone off; with `feedback` (§6.1),
 // at a pixel sample's first hit under pmc_ip, the pixel's mean final α of the earlier
 // iterations instead (the cone off, the floors applied): fixed before the iteration, so the
-// estimate stays unbiased. The estimate is the
-// unweighted mean of the T iterations' estimates: fixed weights, so unbiased. Emission that
-// the integrator's own BSDF samples find is excluded (this estimate covers it all). Area and
-// infinite lights only (a point light has no density over directions to mix); surfaces in
-// scenes without media.
+// estimate stays unbiased. The estimate is the unweighted mean of the T iterations'
+// estimates: fixed weights, so unbiased. Emission that the integrator's own BSDF samples find
+// is excluded (this estimate covers it all). Area and infinite lights only (a point light has
+// no density over directions to mix); surfaces in scenes without media.
 #pragma once
 
 #include <cstdint>
