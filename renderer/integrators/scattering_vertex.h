@@ -154,6 +154,8 @@ class SurfaceVertex final : public ShadingPoint {
             if (source) {
                 source->areaLight = light;
                 source->areaLightPdf = light->pdf(hit_.position, lightHit);
+                source->selectedLightPdf =
+                    out_.guide.lightPdf(out_.vertex, *light, hit_.position, lightHit);
             }
             return light->emitted(lightHit.geometricNormal, -wi);
         }

@@ -27,10 +27,12 @@ struct ScatteringShape {
 
 // Where the emission along a direction comes from (ShadingPoint::incidentEmission): the area
 // light the ray hit and the solid-angle density with which that light's own sampler picks the
-// point (Light::pdf), or that the ray escaped to the infinite lights, or neither.
+// point (Light::pdf), and with which sampleLight() picks it (the light's selection included),
+// or that the ray escaped to the infinite lights, or neither.
 struct EmissionSource {
     const Light* areaLight = nullptr;
     float areaLightPdf = 0;
+    float selectedLightPdf = 0;
     bool escaped = false;
 };
 

@@ -46,6 +46,12 @@ const Case kCases[] = {
      16384, R"(/lights=[{"type":"environment","radiance":0.3}])"},
     {"stratified_sampler", "pmc_fig6_checker_floor.json", kDirectPmcHi, kDirectMis, 8, 16384,
      R"(/render/sampler="stratified")"},
+    // One component for all lights: the integrator's light sampling (selection by power), its
+    // density the selected light's for area lights and every infinite light's for escapes.
+    {"one_component_for_all_lights", "pmc_fig6_checker_floor.json",
+     R"({"type":"direct","estimator":{"type":"pmc_hi","samples":6,"iterations":3,)"
+     R"("light_components":"one"}})",
+     kDirectMis, 8, 16384, R"(/lights=[{"type":"environment","radiance":0.3}])"},
     {"path_mis_vertices", "cornell_spheres.json",
      R"({"type":"path_mis","estimator":{"type":"pmc_hi","samples":4,"iterations":3}})",
      R"({"type":"path_mis"})", 16, 8192,
@@ -149,6 +155,23 @@ TEST(PmcHiAlphaMaps, WeightsSumToOneKeepTheirFloorsAndChangeNoPixel) {
     EXPECT_GT(estimated, kSize * kSize / 2);
 }
 
+// The checker floor with small area lights added until it has `lights`.
+Json checkerFloorWithLights(int lights) {
+    Json doc = readSceneFile(std::string(TEST_SCENES_DIR) + "/pmc_fig6_checker_floor.json");
+    for (int i = 2; i < lights; ++i)
+        doc["shapes"].push_back({{"type", "quad"},
+                                 {"corner", {-3.0 + 0.3 * i, 2.0, -2.0}},
+                                 {"edge_u", {0.1, 0.0, 0.0}},
+                                 {"edge_v", {0.0, 0.0, 0.1}},
+                                 {"emission", {{"radiance", 1.0}}}});
+    return doc;
+}
+
+Json withIntegrator(Json doc, const char* integrator) {
+    doc["integrator"] = Json::parse(integrator);
+    return doc;
+}
+
 // The pointer of the error that loading the scene, or scheduling its render, raises.
 std::string refusal(const std::vector<std::string>& overrides) {
     try {
@@ -172,6 +195,17 @@ TEST(PmcHiSettings, PointLightsAndExcessiveFloorsAreRefused) {
     EXPECT_EQ(
         refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","samples":257}})"}),
         "/integrator/estimator/samples");
+    // More lights than components, one each: refused; "auto" makes one for all instead.
+    const Json many = checkerFloorWithLights(17);
+    try {
+        loadSceneJson(withIntegrator(
+            many, R"({"type":"direct","estimator":{"type":"pmc_hi","light_components":"each"}})"));
+        ADD_FAILURE() << "17 light components were accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/integrator/estimator/light_components");
+    }
+    const LoadedScene automatic = loadSceneJson(withIntegrator(many, kDirectPmcHi));
+    EXPECT_EQ(automatic.integrator->parameters()["estimator"]["light_components"], "one");
     // Feedback starts from earlier PMC-IP iterations' records: nothing to start from without.
     EXPECT_EQ(
         refusal({R"(/integrator={"type":"direct","estimator":{"type":"pmc_hi","feedback":true}})"}),

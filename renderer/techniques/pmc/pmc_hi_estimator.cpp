@@ -53,8 +53,9 @@ struct PmcHiEstimator::Draw {
     Rgb f, le, tr;
     int areaLight = -1;  // the area light the sample lies on
     float areaLightPdf = 0;
-    bool escaped = false;  // a direction to the infinite lights
-    float weight = 0;      // luminance of f·Le·V / K, for the adaptation
+    float selectedLightPdf = 0;  // the light's selection × areaLightPdf (one for all lights)
+    bool escaped = false;        // a direction to the infinite lights
+    float weight = 0;            // luminance of f·Le·V / K, for the adaptation
 };
 
 nlohmann::json PmcHiEstimator::parameters() const {
@@ -63,6 +64,7 @@ nlohmann::json PmcHiEstimator::parameters() const {
             {"iterations", settings_.iterations},
             {"cone_share", settings_.coneShare},
             {"floor", settings_.floor},
+            {"light_components", oneForAllLights_ ? "one" : "each"},
             {"alpha_maps", settings_.alphaMaps},
             {"feedback", settings_.feedback}};
 }
@@ -73,28 +75,35 @@ PixelRecordLayout PmcHiEstimator::pixelRecords() const {
                              "PMC-HI's weight of this mixture component after the estimate's "
                              "iterations (alpha^(T), fig. 7), mean over the pixel's first hits",
                              settings_.feedback ? "feedback" : ""};
-    for (const Light* light : lights_)
-        layout.names.push_back("pmc_hi.alpha.light" + std::to_string(light->index()));
+    if (oneForAllLights_)
+        layout.names.push_back("pmc_hi.alpha.lights");
+    else
+        for (const Light* light : lights_)
+            layout.names.push_back("pmc_hi.alpha.light" + std::to_string(light->index()));
     layout.names.push_back("pmc_hi.alpha.cone");
     return layout;
 }
 
 void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
     lights_.assign(scene.lights().begin(), scene.lights().end());
-    if (lights_.size() > kMaxLights)
-        throw ConfigError(pointer, "pmc_hi gives each light a mixture component, up to " +
-                                       std::to_string(kMaxLights) + " lights; the scene has " +
-                                       std::to_string(lights_.size()));
+    const bool many = lights_.size() > kMaxLights;
+    if (many && settings_.lightComponents == LightComponents::Each)
+        throw ConfigError(pointer + "/light_components",
+                          "pmc_hi gives each light a mixture component, up to " +
+                              std::to_string(kMaxLights) + " lights; the scene has " +
+                              std::to_string(lights_.size()) + " (\"one\" samples them all)");
+    oneForAllLights_ = settings_.lightComponents == LightComponents::One ||
+                       (many && settings_.lightComponents == LightComponents::Auto);
     for (const Light* light : lights_)
         if (light->isDelta())
             throw ConfigError(pointer, "pmc_hi mixes densities over directions, which light " +
                                            std::to_string(light->index()) +
                                            " (a point or spot light) does not have");
-    if (settings_.floor * double(lights_.size() + 1) >= 1)
+    if (settings_.floor * double(lightComponents() + 1) >= 1)
         throw ConfigError(pointer + "/floor", "the floors of the BSDF and the " +
-                                                  std::to_string(lights_.size()) +
-                                                  " lights must leave room for adaptation "
-                                                  "(floor × (lights + 1) < 1)");
+                                                  std::to_string(lightComponents()) +
+                                                  " light components must leave room for "
+                                                  "adaptation (floor × (components − 1) < 1)");
 }
 
 // Draws a sample of `component` and finds its f, Le and visibility.
@@ -102,29 +111,9 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
                           uint32_t repeat, uint32_t repeats, Draw* d) const {
     *d = Draw{};
     d->component = component;
+    if (component >= 1 && component <= lightComponents())
+        return drawLightPoint(point, component, repeat, repeats, d);
     const Vec2 u = point.decide2D(Decision::MixtureDirection, repeat, repeats);
-    const uint32_t lightCount = uint32_t(lights_.size());
-    if (component >= 1 && component <= lightCount) {
-        const Light& light = *lights_[component - 1];
-        LightSample ls;
-        if (!point.sampleLightOf(light, u, &ls) || !(ls.pdf > 0)) return false;
-        d->direction = ls.direction;
-        d->f = point.scattering(ls.direction);
-        if (light.isInfinite()) {
-            d->escaped = true;
-            for (const Light* other : lights_)
-                if (other->isInfinite()) d->le += other->escapedRadiance(ls.direction);
-        } else {
-            d->areaLight = light.index();
-            d->areaLightPdf = ls.pdf;
-            d->le = ls.radiance;
-        }
-        if (d->f.isBlack() || d->le.isBlack()) return false;
-        float survival;
-        d->tr = point.visibility(ls, light.isInfinite(), &survival);
-        d->found = !d->tr.isBlack();
-        return d->found;
-    }
     if (component == kBsdf) {
         float pdf;
         if (!point.sampleScattering(point.decide1D(Decision::MixtureLobe, repeat, repeats), u,
@@ -143,8 +132,43 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
     if (source.areaLight) {
         d->areaLight = source.areaLight->index();
         d->areaLightPdf = source.areaLightPdf;
+        d->selectedLightPdf = source.selectedLightPdf;
     }
     d->found = !d->le.isBlack();
+    return d->found;
+}
+
+// A light component's draw: a point on its light by the light's own sampler, or with one
+// component for all lights a light and a point by the integrator's light sampling.
+bool PmcHiEstimator::drawLightPoint(ShadingPoint& point, uint32_t component, uint32_t repeat,
+                                    uint32_t repeats, Draw* d) const {
+    LightSample ls;
+    const Light* light = nullptr;
+    if (oneForAllLights_) {
+        float pdf;
+        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &pdf, &light) || !(pdf > 0))
+            return false;
+        d->selectedLightPdf = pdf;
+    } else {
+        light = lights_[component - 1];
+        const Vec2 u = point.decide2D(Decision::MixtureDirection, repeat, repeats);
+        if (!point.sampleLightOf(*light, u, &ls) || !(ls.pdf > 0)) return false;
+    }
+    d->direction = ls.direction;
+    d->f = point.scattering(ls.direction);
+    if (light->isInfinite()) {
+        d->escaped = true;
+        for (const Light* other : lights_)
+            if (other->isInfinite()) d->le += other->escapedRadiance(ls.direction);
+    } else {
+        d->areaLight = light->index();
+        d->areaLightPdf = ls.pdf;
+        d->le = ls.radiance;
+    }
+    if (d->f.isBlack() || d->le.isBlack()) return false;
+    float survival;
+    d->tr = point.visibility(ls, light->isInfinite(), &survival);
+    d->found = !d->tr.isBlack();
     return d->found;
 }
 
@@ -154,6 +178,14 @@ float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
     double k = kernel.alpha[kBsdf] * point.sampleScatteringPdf(d.direction);
     const uint32_t cone = components() - 1;
     if (kernel.alpha[cone] > 0) k += kernel.alpha[cone] * kernel.conePdf(d.direction);
+    if (oneForAllLights_) {
+        // The integrator's light sampling: the selected light's density, or every infinite
+        // light's for a direction that escapes.
+        Rgb radiance;
+        if (d.areaLight >= 0) k += kernel.alpha[1] * d.selectedLightPdf;
+        if (d.escaped) k += kernel.alpha[1] * point.infiniteLightPdf(d.direction, &radiance);
+        return static_cast<float>(k);
+    }
     if (d.areaLight >= 0) k += kernel.alpha[1 + d.areaLight] * d.areaLightPdf;
     if (d.escaped)
         for (const Light* light : lights_)
@@ -314,6 +346,7 @@ float PmcHiEstimator::mixtureDensity(ShadingPoint& point, const MixtureParameter
     if (source.areaLight) {
         d.areaLight = source.areaLight->index();
         d.areaLightPdf = source.areaLightPdf;
+        d.selectedLightPdf = source.selectedLightPdf;
     }
     return density(point, kernelOf(p), d);
 }

@@ -5,7 +5,9 @@
 // Per shading point, T iterations of a population of N samples from the mixture kernel
 // (eq. 7)  K = α_BSDF h_BSDF + Σ_k α_Lk h_Lk + α_cone h_cone(d, β):
 // the BSDF's own sampling, one component per light (its own sampler, no selection), and
-// directions uniform in the cone of half-angle β about d. Per iteration:
+// directions uniform in the cone of half-angle β about d. With many lights (`light_components`
+// "one", or "auto" beyond kMaxLights) one component stands for all of them: the integrator's
+// light sampling, selection included (§5.1: "one for all lights"). Per iteration:
 //  - counts per component by deterministic mixture sampling (⌊Nα_k⌋ plus a systematic
 //    residual, mixture_allocation.h), so E[n_k] = N α_k;
 //  - each sample x (a point on a light, or the emitter a direction finds) is weighed by the
@@ -35,11 +37,14 @@
 
 namespace rr::pmc {
 
+enum class LightComponents : uint8_t { Auto, Each, One };
+
 struct PmcHiSettings {
     uint32_t samples = 0;  // N per iteration; 0: twice the components (2m, §5)
     uint32_t iterations = 2;
     double coneShare = 0.2;  // α_cone after iteration 0
     double floor = 0.05;     // least α of the BSDF and of each light
+    LightComponents lightComponents = LightComponents::Auto;
     bool alphaMaps = false;  // record α^(T) at first hits (fig. 7)
     // §6.1: record α^(T) at first hits, and start a first hit's iteration 0 from the pixel's
     // mean α^(T) as committed at the last PMC-IP iteration boundary.
@@ -66,8 +71,9 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     // 7 shows α^(2)), per component: pmc_hi.alpha.bsdf, .light<index>, .cone.
     PixelRecordLayout pixelRecords() const override;
 
-    // m: the BSDF, one per light, the cone.
-    uint32_t components() const { return uint32_t(lights_.size()) + 2; }
+    // m: the BSDF, one per light (or one for all), the cone.
+    uint32_t components() const { return lightComponents() + 2; }
+    uint32_t lightComponents() const { return oneForAllLights_ ? 1 : uint32_t(lights_.size()); }
     uint32_t populationSize() const {
         return settings_.samples > 0 ? settings_.samples : 2 * components();
     }
@@ -100,6 +106,8 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     Kernel kernelOf(const MixtureParameters& p) const;
     bool draw(ShadingPoint& point, const Kernel& kernel, uint32_t component, uint32_t repeat,
               uint32_t repeats, Draw* out) const;
+    bool drawLightPoint(ShadingPoint& point, uint32_t component, uint32_t repeat, uint32_t repeats,
+                        Draw* d) const;
     float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
     void adapt(const Kernel& previous, const Draw* draws, uint32_t count, Kernel* next) const;
     Kernel initialKernel(const ShadingPoint& point) const;
@@ -108,6 +116,7 @@ class PmcHiEstimator final : public DirectLightingEstimator {
 
     PmcHiSettings settings_;
     std::vector<const Light*> lights_;
+    bool oneForAllLights_ = false;
 };
 
 }  // namespace rr::pmc

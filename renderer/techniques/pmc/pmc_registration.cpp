@@ -52,6 +52,10 @@ std::unique_ptr<DirectLightingEstimator> makePmcHi(ObjectReader& json) {
     s.coneShare = json.getNumber("cone_share", 0.2, Range{0, 1, false, true});
     // A zero floor would let the BSDF and a light both die: no support where they cover.
     s.floor = json.getNumber("floor", 0.05, Range::open(0, 0.5));
+    const std::string lights = json.getChoice("light_components", {"auto", "each", "one"}, "auto");
+    s.lightComponents = lights == "each"  ? LightComponents::Each
+                        : lights == "one" ? LightComponents::One
+                                          : LightComponents::Auto;
     s.alphaMaps = json.getBool("alpha_maps", false);
     s.feedback = json.getBool("feedback", false);
     return std::make_unique<PmcHiEstimator>(s);
