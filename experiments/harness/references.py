@@ -7,7 +7,6 @@ import datetime
 import hashlib
 import json
 import shutil
-import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -100,8 +99,9 @@ def _copy_reference(exp: Experiment, profile: Profile, source: str, entry: dict[
 
 
 def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> None:
-    """Renders the two halves with all cores, merges them, records the manifest entry; or, with
-    `reuse`, copies a current reference with the same key."""
+    """Renders the two halves with all cores (resuming from a half a killed run finished),
+    merges them, records the manifest entry; or, with `reuse`, copies a current reference with
+    the same key."""
     manifest = load_manifest()
     same = _same_key_entry(manifest, key(exp, profile)) if reuse else None
     if same is not None:
@@ -115,13 +115,22 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
           f"{exp.reference_integrator['type']} at {profile.resolution[0]}x{profile.resolution[1]}",
           flush=True)
     started = time.monotonic()
-    with tempfile.TemporaryDirectory(dir=paths.REFERENCE, prefix=".halves-") as scratch:
-        halves = [Path(scratch) / f"half{i}.exr" for i in range(2)]
-        for half, seed in zip(halves, seeds):
-            renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
-                           threads=jobs.default_jobs())
-        merged = json.loads(jobs.run_command(
-            [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
+    # Halves live in a directory named by the key, so a render killed after its first half
+    # resumes there (the renderer writes each half atomically: one that exists is complete).
+    wanted = key(exp, profile)
+    scratch = paths.REFERENCE / f".halves-{wanted[:16]}"
+    scratch.mkdir(exist_ok=True)
+    halves = [scratch / f"half{i}.exr" for i in range(2)]
+    resumed = [i for i, half in enumerate(halves) if half.exists()]
+    for half, seed in zip(halves, seeds):
+        if half.exists():
+            print(f"[references] {paths.relative(half)}: rendered before, reused", flush=True)
+            continue
+        renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
+                       threads=jobs.default_jobs())
+    merged = json.loads(jobs.run_command(
+        [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
+    shutil.rmtree(scratch)
     manifest = load_manifest()
     manifest[entry_name(exp, profile)] = {
         "file": str(file_name(exp, profile)),
@@ -133,6 +142,7 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
         "spp": profile.reference_spp,
         "seeds": seeds,
         "wall_seconds": round(time.monotonic() - started, 2),
+        "resumed_halves": resumed,
         "sha256": provenance.sha256_file(out),
         "noise_rmse": merged["noise_rmse"],
         "noise_sigma_over_mu": merged["noise_sigma_over_mu"],

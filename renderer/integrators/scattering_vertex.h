@@ -144,7 +144,7 @@ class SurfaceVertex final : public ShadingPoint {
             ++out_.rays.extension;
             const Scene& scene = out_.guide.scene();
             SurfaceHit lightHit;
-            if (source) *source = EmissionSource{};
+            if (source) *source = EmissionSource{.withSelection = source->withSelection};
             if (!scene.intersect(hit_.spawn(wi), &lightHit)) {
                 if (source) source->escaped = true;
                 return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
@@ -154,8 +154,9 @@ class SurfaceVertex final : public ShadingPoint {
             if (source) {
                 source->areaLight = light;
                 source->areaLightPdf = light->pdf(hit_.position, lightHit);
-                source->selectedLightPdf =
-                    out_.guide.lightPdf(out_.vertex, *light, hit_.position, lightHit);
+                if (source->withSelection)
+                    source->selectedLightPdf =
+                        out_.guide.lightPdf(out_.vertex, *light, hit_.position, lightHit);
             }
             return light->emitted(lightHit.geometricNormal, -wi);
         }

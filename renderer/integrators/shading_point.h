@@ -27,9 +27,10 @@ struct ScatteringShape {
 
 // Where the emission along a direction comes from (ShadingPoint::incidentEmission): the area
 // light the ray hit and the solid-angle density with which that light's own sampler picks the
-// point (Light::pdf), and with which sampleLight() picks it (the light's selection included),
-// or that the ray escaped to the infinite lights, or neither.
+// point (Light::pdf), and, when `withSelection` is asked for, with which sampleLight() picks it
+// (the light's selection included); or that the ray escaped to the infinite lights; or neither.
 struct EmissionSource {
+    bool withSelection = false;  // in: also fill selectedLightPdf
     const Light* areaLight = nullptr;
     float areaLightPdf = 0;
     float selectedLightPdf = 0;
@@ -90,10 +91,11 @@ class ShadingPoint {
     // coordinates `u`, without light selection: for estimators with one mixture component per
     // light (PMC-HI). Its density is the sample's pdf (solid angle).
     virtual bool sampleLightOf(const Light& light, const Vec2& u, LightSample* sample) const = 0;
-    // In a scene whose lights are all infinite (a direction is then the point on every light
-    // it sees): the density with which sampleLight() draws direction `wi`, summed over the
-    // lights, and their unoccluded radiance along it. For estimators that mix light samples
-    // with directions drawn otherwise (RIS's `mixture` source, which checks the scene).
+    // The density with which sampleLight() draws direction `wi` towards the infinite lights,
+    // summed over them (a direction is the point on every infinite light it sees), and their
+    // unoccluded radiance along it: for estimators that mix light samples with directions drawn
+    // otherwise (RIS's `mixture` source in scenes of infinite lights only; PMC-HI's one
+    // component for all lights, for a direction that escapes).
     virtual float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const = 0;
     // Adds one light sample's contribution to the radiance the integrator gathers, scaled by
     // what the path carries to this point (a technique's guide hears of it too: TAIS credits

@@ -1,6 +1,7 @@
 """References with the same key (scene document, integrator, resolution, spp; fixed seeds) are
 the same image: the harness copies a current one instead of rendering it again, but not when
-forced, and never from a file whose hash no longer matches its manifest entry."""
+forced, and never from a file whose hash no longer matches its manifest entry. A render killed
+after its first half resumes from it."""
 import contextlib
 import hashlib
 import io
@@ -70,6 +71,60 @@ class SameKeyReferences(unittest.TestCase):
         (paths.REFERENCE / entry["file"]).write_bytes(b"changed since")
         with self.assertRaisesRegex(RuntimeError, "rendered"):
             self.ensure()
+
+
+class ResumedHalves(unittest.TestCase):
+    """The halves live in a directory named by the key: a second attempt renders only the half
+    the first did not finish, and the directory is removed once the halves are merged."""
+
+    def setUp(self):
+        scratch = tempfile.TemporaryDirectory()
+        self.addCleanup(scratch.cleanup)
+        root = Path(scratch.name)
+        for name, value in (("REFERENCE", root / "reference"),
+                            ("MANIFEST", root / "reference" / "manifest.json")):
+            self.addCleanup(setattr, paths, name, getattr(paths, name))
+            setattr(paths, name, value)
+        paths.REFERENCE.mkdir()
+        self.exp = load_config(valid())
+        self.profile = self.exp.profiles["quick"]
+        self.rendered_seeds = []
+        self.kill_at_seed = None
+        for target, value, fake in ((references, "key", lambda exp, profile: "K" * 64),
+                                    (references.renders, "render", self.render),
+                                    (references.jobs, "run_command", self.merge)):
+            patcher = mock.patch.object(target, value, side_effect=fake)
+            patcher.start()
+            self.addCleanup(patcher.stop)
+
+    def render(self, exp, profile, integrator, out, seed, **kwargs):
+        if seed == self.kill_at_seed:
+            raise KeyboardInterrupt("killed")
+        self.rendered_seeds.append(seed)
+        Path(out).write_bytes(f"half {seed}".encode())
+
+    @staticmethod
+    def merge(args):
+        Path(args[args.index("--out") + 1]).write_bytes(b"merged")
+        return json.dumps({"noise_rmse": 0.1, "noise_sigma_over_mu": 0.01})
+
+    def render_reference(self):
+        with contextlib.redirect_stdout(io.StringIO()):
+            references.render_reference(self.exp, self.profile, reuse=False)
+
+    def test_a_killed_render_resumes_from_its_finished_half(self):
+        first, second = (references.renders.REFERENCE_SEED_BASE + i for i in range(2))
+        self.kill_at_seed = second
+        with self.assertRaises(KeyboardInterrupt):
+            self.render_reference()
+        self.assertEqual(self.rendered_seeds, [first])
+        self.kill_at_seed = None
+        self.render_reference()
+        self.assertEqual(self.rendered_seeds, [first, second])
+        entry = json.loads(paths.MANIFEST.read_text())[references.entry_name(self.exp,
+                                                                            self.profile)]
+        self.assertEqual(entry["resumed_halves"], [0])
+        self.assertEqual(list(paths.REFERENCE.glob(".halves-*")), [])
 
 
 if __name__ == "__main__":

@@ -4,9 +4,10 @@
 // with a long direct-MIS render for the image mean and every 8 × 8 block mean of every channel,
 // by z-tests with a Šidák-corrected family-wise level of 1 %: two area lights (the checker
 // floor), a constant environment (the escaped-direction branch), both together with three
-// iterations, the stratified sampler, and PMC-HI at every vertex of path_mis (the Cornell
-// spheres, both diffuse); a floor 2.5 % darker must be rejected (the tests' power).
-// Bad settings are refused naming the key.
+// iterations, the stratified sampler, one component for all lights, and PMC-HI at every vertex
+// of path_mis (the Cornell spheres, both diffuse); a floor 2.5 % darker must be rejected (the
+// tests' power). Bad settings are refused naming the key; 17 lights are refused with one
+// component each and get one for all with "auto".
 #include <gtest/gtest.h>
 
 #include <cstdio>

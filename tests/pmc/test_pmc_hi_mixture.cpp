@@ -1,6 +1,8 @@
 // PMC-HI's mixture kernel (Lai et al. 2007 eq. 7) and the density that weighs its samples
 // (eq. 8's denominator), at a fixed shading point under a quad area light and a constant
-// environment, with fixed α, cone axis d and cone angle β:
+// environment, with fixed α, cone axis d and cone angle β; one case with one component for all
+// lights (the scene's light selection; a second environment, so that an escaped direction's
+// density must sum both):
 //  - the directions of a population's samples that find emission follow K = Σ α_k h_k: χ²
 //    over the sphere, where each h_k is the estimator's own density with α one-hot on k
 //    (so the test also checks that K sums every component that could have drawn a sample —
@@ -44,8 +46,16 @@ class ScenePoint final : public ShadingPoint {
     ScenePoint(const Scene& scene, const Material& material, const Frame& frame, const Vec3& wo)
         : scene_(scene), material_(material), frame_(frame), wo_(frame.toLocal(wo)) {}
 
-    bool sampleLight(uint32_t, uint32_t, LightDraw, LightSample*, float*, const Light**) override {
-        return false;  // PMC-HI draws each light through sampleLightOf()
+    // The integrator's light sampling (PMC-HI's one component for all lights): the scene's
+    // selection, then the light's own sampler.
+    bool sampleLight(uint32_t, uint32_t, LightDraw, LightSample* ls, float* pdf,
+                     const Light** light) override {
+        float pmf;
+        *light = scene_.lightSelector().select(uniform(kSeed, draws_++), Vec3(0.0f), &pmf);
+        if (!*light || !(*light)->sample(Vec3(0.0f), uniform2(kSeed, draws_++), 0.0f, ls))
+            return false;
+        *pdf = pmf * ls->pdf;
+        return true;
     }
     Rgb scattering(const Vec3& wi) const override {
         return material_.eval(context(), wo_, frame_.toLocal(wi));
@@ -89,17 +99,27 @@ class ScenePoint final : public ShadingPoint {
         } else if (const AreaLight* light = hit.shape->areaLight()) {
             found.areaLight = light;
             found.areaLightPdf = light->pdf(Vec3(0.0f), hit);
+            if (source && source->withSelection)
+                found.selectedLightPdf =
+                    scene_.lightSelector().pmf(*light, Vec3(0.0f)) * found.areaLightPdf;
             le = light->emitted(hit.geometricNormal, -wi);
         }
-        if (source) *source = found;
+        if (source)
+            *source = EmissionSource{source->withSelection, found.areaLight, found.areaLightPdf,
+                                     found.selectedLightPdf, found.escaped};
         return le;
     }
     bool sampleLightOf(const Light& light, const Vec2& u, LightSample* ls) const override {
         return light.sample(Vec3(0.0f), u, 0.0f, ls);
     }
-    float infiniteLightPdf(const Vec3&, Rgb* radiance) const override {
+    float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
+        float pdf = 0;
         *radiance = Rgb(0.0f);
-        return 0;
+        for (const Light* light : scene_.infiniteLights()) {
+            pdf += scene_.lightSelector().pmf(*light, Vec3(0.0f)) * light->directionPdf(wi);
+            *radiance += light->escapedRadiance(wi);
+        }
+        return pdf;
     }
     void add(const Rgb&) override {}
 
@@ -116,21 +136,27 @@ class ScenePoint final : public ShadingPoint {
     mutable uint64_t draws_ = 0;
 };
 
-// The quad (1.1 × 0.9, facing down, ~0.2 sr) above the point, and a constant environment.
-LoadedScene quadAndEnvironment() {
-    return loadSceneText(R"({"render": {"resolution": [4, 4]},
+// The quad (1.1 × 0.9, facing down, ~0.2 sr) above the point and a constant environment, or
+// two (whose densities for an escaped direction one component for all lights must sum).
+LoadedScene quadAndEnvironment(bool twoEnvironments) {
+    return loadSceneText(
+        R"({"render": {"resolution": [4, 4]},
         "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
         "shapes": [{"type": "quad", "corner": [-0.3, -0.7, 2], "edge_u": [0, 1.1, 0.2],
                     "edge_v": [0.9, 0, 0.1], "emission": {"radiance": 5}}],
-        "lights": [{"type": "environment", "radiance": 0.5}]})");
+        "lights": [{"type": "environment", "radiance": 0.5})" +
+        std::string(twoEnvironments ? R"(, {"type": "environment", "radiance": 0.2})" : "") + "]}");
 }
 
 struct Case {
     const char* name;
     const char* material;
-    std::vector<double> alpha;  // the BSDF, the quad, the environment, the cone
+    std::vector<double> alpha;  // the BSDF, the quad, the environment(s), the cone
     Vec3 coneAxis;
     float coneAngle;
+    // One component for all lights (the quad and two environments, α its quad's and
+    // environments' entries summed), drawn by the scene's light selection (by power).
+    bool oneForAll = false;
 };
 
 const Case kCases[] = {
@@ -152,6 +178,12 @@ const Case kCases[] = {
      {1 / 3.0, 1 / 3.0, 1 / 3.0, 0},
      Vec3(0, 0, 1),
      0.0f},
+    {"one_for_all_lights",
+     R"({"type":"blinn","reflectance":1,"ior":1.5,"roughness":0.2})",
+     {0.3, 0.25, 0.25, 0.2},
+     Vec3(0.3f, 0, 1),
+     0.35f,
+     true},
 };
 
 // χ² runs: the cases and two negative controls.
@@ -162,13 +194,21 @@ constexpr uint32_t kPopulations = 4000;  // ~10⁶ draws
 
 // The point, its material and the estimator for one case.
 struct Fixture {
-    LoadedScene scene = quadAndEnvironment();
+    LoadedScene scene;
     std::unique_ptr<Material> bsdf;
-    PmcHiEstimator estimator{pmc::PmcHiSettings{}};
+    PmcHiEstimator estimator;
     std::unique_ptr<ScenePoint> point;
-    uint32_t quad = 0, environment = 0;  // their components
+    uint32_t quad = 0, environment = 0;  // their components (one light each)
 
-    explicit Fixture(const Case& c) : bsdf(materialFromJson(c.material)) {
+    static pmc::PmcHiSettings settings(const Case& c) {
+        pmc::PmcHiSettings s;
+        s.lightComponents = c.oneForAll ? pmc::LightComponents::One : pmc::LightComponents::Each;
+        return s;
+    }
+    explicit Fixture(const Case& c)
+        : scene(quadAndEnvironment(c.oneForAll)),
+          bsdf(materialFromJson(c.material)),
+          estimator(settings(c)) {
         estimator.prepare(*scene.scene, "/integrator/estimator");
         for (const Light* light : scene.scene->lights())
             (light->isInfinite() ? environment : quad) = 1 + light->index();
@@ -178,6 +218,8 @@ struct Fixture {
     }
     // The case's α reordered to the estimator's components.
     Parameters parameters(const Case& c) const {
+        if (c.oneForAll)
+            return {{c.alpha[0], c.alpha[1] + c.alpha[2], c.alpha[3]}, c.coneAxis, c.coneAngle};
         Parameters p{std::vector<double>(4, 0.0), c.coneAxis, c.coneAngle};
         p.alpha[0] = c.alpha[0];
         p.alpha[quad] = c.alpha[1];
@@ -193,14 +235,28 @@ DirectionHistogram cells() {
     return DirectionHistogram(25, 50);
 }
 
-// Expected counts of component k's found samples for `draws` draws: ∫ h_k over each cell.
+// Expected counts of component k's found samples for `draws` draws: ∫ h_k over each cell,
+// over the directions that reach the quad and those that escape separately, so that the quad's
+// outline, where one component for all lights jumps from the environments' density to the
+// quad's, is a boundary of each integrand's support (which the histogram refines).
 std::vector<double> componentCounts(Fixture& s, Parameters p, uint32_t k, double draws) {
     const double share = p.alpha[k];
     std::fill(p.alpha.begin(), p.alpha.end(), 0.0);
     p.alpha[k] = 1;
-    return cells().expected(
-        [&](const Vec3& w) { return double(s.estimator.mixtureDensity(*s.point, p, w)); },
-        draws * share);
+    std::vector<double> total;
+    for (bool towardsQuad : {true, false}) {
+        const std::vector<double> part = cells().expected(
+            [&](const Vec3& w) {
+                SurfaceHit hit;
+                if (s.scene.scene->intersect(Ray{Vec3(0.0f), w}, &hit) != towardsQuad) return 0.0;
+                return double(s.estimator.mixtureDensity(*s.point, p, w));
+            },
+            draws * share);
+        total.resize(part.size(), 0.0);
+        for (size_t i = 0; i < part.size(); ++i)
+            total[i] += part[i];
+    }
+    return total;
 }
 
 struct Observed {
@@ -248,10 +304,11 @@ TEST_P(PmcHiMixture, FoundSamplesFollowTheDensityThatWeighsThem) {
     const Observed observed = drawDirections(s, p);
     const double draws = double(kPopulations) * kPopulation;
     std::vector<std::vector<double>> components;
-    for (uint32_t k = 0; k < 4; ++k)
+    for (uint32_t k = 0; k < p.alpha.size(); ++k)
         components.push_back(p.alpha[k] > 0 ? componentCounts(s, p, k, draws)
                                             : std::vector<double>(cells().counts().size(), 0.0));
-    const std::vector<double> expected = expectedCounts(components, {1, 1, 1, 1});
+    const std::vector<double> expected =
+        expectedCounts(components, std::vector<double>(components.size(), 1.0));
     std::printf("found %.4f of the draws (expected %.4f)\n", observed.found / draws,
                 1 - expected.back() / draws);
     EXPECT_EQ(observed.densityMismatches, 0u) << "of " << observed.found;

@@ -86,6 +86,11 @@ PixelRecordLayout PmcHiEstimator::pixelRecords() const {
 
 void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
     lights_.assign(scene.lights().begin(), scene.lights().end());
+    for (const Light* light : lights_)
+        if (light->isDelta())
+            throw ConfigError(pointer, "pmc_hi mixes densities over directions, which light " +
+                                           std::to_string(light->index()) +
+                                           " (a point or spot light) does not have");
     const bool many = lights_.size() > kMaxLights;
     if (many && settings_.lightComponents == LightComponents::Each)
         throw ConfigError(pointer + "/light_components",
@@ -94,11 +99,6 @@ void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
                               std::to_string(lights_.size()) + " (\"one\" samples them all)");
     oneForAllLights_ = settings_.lightComponents == LightComponents::One ||
                        (many && settings_.lightComponents == LightComponents::Auto);
-    for (const Light* light : lights_)
-        if (light->isDelta())
-            throw ConfigError(pointer, "pmc_hi mixes densities over directions, which light " +
-                                           std::to_string(light->index()) +
-                                           " (a point or spot light) does not have");
     if (settings_.floor * double(lightComponents() + 1) >= 1)
         throw ConfigError(pointer + "/floor", "the floors of the BSDF and the " +
                                                   std::to_string(lightComponents()) +
@@ -125,7 +125,7 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
     }
     d->f = point.scattering(d->direction);
     if (d->f.isBlack()) return false;
-    EmissionSource source;
+    EmissionSource source{.withSelection = oneForAllLights_};
     d->le = point.incidentEmission(d->direction, &source);
     d->tr = Rgb(1.0f);
     d->escaped = source.escaped;
@@ -340,7 +340,7 @@ float PmcHiEstimator::mixtureDensity(ShadingPoint& point, const MixtureParameter
                                      const Vec3& wi) const {
     Draw d;
     d.direction = wi;
-    EmissionSource source;
+    EmissionSource source{.withSelection = oneForAllLights_};
     if (point.scattering(wi).isBlack() || point.incidentEmission(wi, &source).isBlack()) return 0;
     d.escaped = source.escaped;
     if (source.areaLight) {

@@ -7,7 +7,8 @@
 // the BSDF's own sampling, one component per light (its own sampler, no selection), and
 // directions uniform in the cone of half-angle β about d. With many lights (`light_components`
 // "one", or "auto" beyond kMaxLights) one component stands for all of them: the integrator's
-// light sampling, selection included (§5.1: "one for all lights"). Per iteration:
+// light sampling, selection included (§7 suggests a single component for all lights, relying
+// on the cone to find the visible ones). Per iteration:
 //  - counts per component by deterministic mixture sampling (⌊Nα_k⌋ plus a systematic
 //    residual, mixture_allocation.h), so E[n_k] = N α_k;
 //  - each sample x (a point on a light, or the emitter a direction finds) is weighed by the
@@ -67,8 +68,9 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     bool worksInMedia() const override { return false; }
     void prepare(const Scene& scene, const std::string& pointer) override;
     void estimate(ShadingPoint& point) const override;
-    // With alpha_maps: the α each estimate would use next, α^(T) after its T iterations (fig.
-    // 7 shows α^(2)), per component: pmc_hi.alpha.bsdf, .light<index>, .cone.
+    // With alpha_maps (or feedback, which starts from them): the α each estimate would use
+    // next, α^(T) after its T iterations (fig. 7 shows α^(2)), per component:
+    // pmc_hi.alpha.bsdf, .light<index> (or .lights, one for all), .cone.
     PixelRecordLayout pixelRecords() const override;
 
     // m: the BSDF, one per light (or one for all), the cone.
@@ -82,7 +84,7 @@ class PmcHiEstimator final : public DirectLightingEstimator {
     // fixed parameters, one population drawn from it as estimate() draws an iteration's, and
     // the density of the samples it finds.
     struct MixtureParameters {
-        std::vector<double> alpha;  // components(): the BSDF, each light, the cone
+        std::vector<double> alpha;  // components(): the BSDF, each light (or all), the cone
         Vec3 coneAxis{0, 0, 1};
         float coneAngle = 0;  // β, radians; alpha's last entry must be 0 when there is no cone
     };
