@@ -15,15 +15,20 @@ from fixtures import load_config, valid
 from harness import paths, references
 
 
+def use_scratch_reference_directory(test: unittest.TestCase) -> None:
+    """Points paths.REFERENCE and paths.MANIFEST into a temporary directory for one test."""
+    scratch = tempfile.TemporaryDirectory()
+    test.addCleanup(scratch.cleanup)
+    root = Path(scratch.name)
+    for name, value in (("REFERENCE", root / "reference"),
+                        ("MANIFEST", root / "reference" / "manifest.json")):
+        test.addCleanup(setattr, paths, name, getattr(paths, name))
+        setattr(paths, name, value)
+
+
 class SameKeyReferences(unittest.TestCase):
     def setUp(self):
-        scratch = tempfile.TemporaryDirectory()
-        self.addCleanup(scratch.cleanup)
-        root = Path(scratch.name)
-        for name, value in (("REFERENCE", root / "reference"),
-                            ("MANIFEST", root / "reference" / "manifest.json")):
-            self.addCleanup(setattr, paths, name, getattr(paths, name))
-            setattr(paths, name, value)
+        use_scratch_reference_directory(self)
         self.first = load_config(valid(), figure="first")
         self.second = load_config(valid(), figure="second")
         self.profile = self.second.profiles["quick"]
@@ -78,13 +83,7 @@ class ResumedHalves(unittest.TestCase):
     the first did not finish, and the directory is removed once the halves are merged."""
 
     def setUp(self):
-        scratch = tempfile.TemporaryDirectory()
-        self.addCleanup(scratch.cleanup)
-        root = Path(scratch.name)
-        for name, value in (("REFERENCE", root / "reference"),
-                            ("MANIFEST", root / "reference" / "manifest.json")):
-            self.addCleanup(setattr, paths, name, getattr(paths, name))
-            setattr(paths, name, value)
+        use_scratch_reference_directory(self)
         paths.REFERENCE.mkdir()
         self.exp = load_config(valid())
         self.profile = self.exp.profiles["quick"]
