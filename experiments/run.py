@@ -56,10 +56,11 @@ def validate_experiment(exp: Experiment) -> None:
     """The scene documents of every technique and of the reference, in both profiles. An
     absent asset that may be skipped (see SceneRejected.skippable) is raised as it is."""
     for profile in exp.profiles.values():
-        for integrator in [t.integrator for t in exp.techniques.values()] + [
-                exp.reference_integrator]:
+        for integrator, overrides in [(t.integrator, t.overrides)
+                                      for t in exp.techniques.values()] + [
+                (exp.reference_integrator, {})]:
             try:
-                renders.check_scene(exp, profile, integrator)
+                renders.check_scene(exp, profile, integrator, overrides)
             except SceneRejected as e:
                 if e.skippable:
                     raise

@@ -159,6 +159,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"fractional spp", {"/render/spp=1.5"}, "/render/spp"},
         BadInput{"negative resolution", {"/render/resolution=[-8, 8]"}, "/render/resolution/0"},
         BadInput{"unknown sampler", {"/render/sampler=\"sobol\""}, "/render/sampler"},
+        BadInput{
+            "zero Russian roulette survival", {"/render/rr_survival=0"}, "/render/rr_survival"},
+        BadInput{"Russian roulette survival above one",
+                 {"/render/rr_survival=1.5"},
+                 "/render/rr_survival"},
         BadInput{"fov out of range", {"/camera/fov=180"}, "/camera/fov"},
         BadInput{"camera looks at itself", {"/camera/look_at=[0, 0, 3]"}, "/camera/look_at"},
         BadInput{"thin lens without aperture",
@@ -273,6 +278,9 @@ INSTANTIATE_TEST_SUITE_P(
                  {R"(/lights/0={"type":"environment","radiance":1,"file":"envmaps/x.hdr",)"
                   R"("layout":"probe"})"},
                  "/lights/0/radiance"},
+        BadInput{"environment of unknown sampling",
+                 {R"(/lights/0={"type":"environment","radiance":1,"sampling":"fancy"})"},
+                 "/lights/0/sampling"},
         BadInput{"environment map without layout",
                  {R"(/lights/0={"type":"environment","file":"envmaps/x.hdr"})"},
                  "/lights/0/layout"},

@@ -81,6 +81,27 @@ TEST(IntegratorAgreement, PathMisEstimatorsAgree) {
         }
 }
 
+// Russian roulette with a fixed survival probability (pbrt-v1's 0.5, `rr_survival`) from the
+// second vertex on estimates the same image as the throughput-driven default.
+TEST(IntegratorAgreement, FixedRussianRouletteAgreesWithTheDefault) {
+    const double z = zThreshold(sidakAlpha(0.01, 3));
+    std::vector<TestRender> renders;
+    uint32_t seed = 50;
+    for (const char* roulette : {"", R"(,"rr_depth":2,"rr_survival":0.5)"}) {
+        auto overrides = kSmall;
+        overrides.push_back(std::string(R"(/render={"resolution":[32,32],"max_depth":8)") +
+                            roulette + "}");
+        renders.push_back(
+            renderScene(loadSceneFile("cornell_spheres.json", overrides), 512, seed++));
+    }
+    for (int c = 0; c < 3; ++c) {
+        const Estimate a = imageMean(renders[0].film, c), b = imageMean(renders[1].film, c);
+        EXPECT_LT(std::abs(differenceZ(a, b)), z)
+            << "channel " << c << ": " << a.mean << " ± " << a.standardError << " vs " << b.mean
+            << " ± " << b.standardError;
+    }
+}
+
 // One implementation of next-event estimation: `path_mis` whose estimator samples no light is
 // `path` pixel for pixel, and `direct` with a named estimator is `direct` with the same
 // strategy.

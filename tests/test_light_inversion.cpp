@@ -324,7 +324,7 @@ TEST(LightInversion, EnvironmentMapRefusesDirectionsOfZeroDensity) {
             float jacobian;
             ASSERT_TRUE(
                 latlong->layout().direction({(col + 0.5f) / 16, (row + 0.5f) / 8}, &w, &jacobian));
-            EXPECT_EQ(latlong->directionPdf(w), 0.0f);
+            EXPECT_EQ(latlong->directionPdf(Vec3(0.0f), w), 0.0f);
             EXPECT_FALSE(latlong->invertSample(Vec3(0.0f), w, Vec3(0.0f), &u))
                 << col << ", " << row;
         }

@@ -35,8 +35,9 @@ def write(profile_name: str) -> list[Path]:
     renders.check_scene(exp, profile, exp.techniques["pmc_ip"].integrator)  # assets present?
     for name, (technique, spp) in runs.items():
         files[name] = folder / f"{name}.exr"
-        renders.render(exp, profile, exp.techniques[technique].integrator, files[name], seed=0,
-                       spp=spp, threads=2)
+        t = exp.techniques[technique]
+        renders.render(exp, profile, t.integrator, files[name], seed=0, spp=spp, threads=2,
+                       overrides=t.overrides)
     scale = float(np.percentile(rgb(files["uniform"]), 99))
 
     def display(exr: Path) -> np.ndarray:

@@ -29,8 +29,9 @@ def write(profile_name: str) -> list[Path]:
         zooms[name] = []
         for seed in range(run.profile.seeds):
             exr = run.folder / f"{name}_seed{seed}.exr"
-            renders.render(run.exp, run.profile, run.exp.techniques[name].integrator, exr,
-                           seed=seed, spp=run.profile.spp[0], threads=2)
+            technique = run.exp.techniques[name]
+            renders.render(run.exp, run.profile, technique.integrator, exr, seed=seed,
+                           spp=run.profile.spp[0], threads=2, overrides=technique.overrides)
             pixels = rgb(exr)
             images.setdefault(name, pixels)
             zooms[name].append(crop(pixels, CROP))

@@ -69,6 +69,8 @@ class Technique:
     fixed_spp: bool = False  # renders a fixed spp and cannot honour --time-limit
     # JSON pointers into the integrator where each spp budget goes (one pixel sample per render)
     samples_at: list[str] = field(default_factory=list)
+    # JSON pointer -> value for this technique's renders, after the experiment's (`set`)
+    overrides: dict[str, Any] = field(default_factory=dict)
 
     def integrator_for(self, spp: int) -> tuple[Integrator, int]:
         """The integrator a render of `spp` budget uses, and the pixel samples it takes."""
@@ -356,7 +358,7 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         overrides=doc.get("set", {}),
         techniques={name: Technique(name, t.get("label", name), t["integrator"],
                                     t.get("fixed_spp", False) or "samples_at" in t,
-                                    t.get("samples_at", []))
+                                    t.get("samples_at", []), t.get("set", {}))
                     for name, t in doc["techniques"].items()},
         baseline=doc["baseline"],
         metrics=doc["metrics"],

@@ -33,10 +33,12 @@ class Comparison:
     metrics: dict[str, float | None]  # every metric of config.METRICS; None: not computed
 
 
-def scene_args(exp: Experiment, profile: Profile, integrator: Integrator) -> list[object]:
-    """`SCENE --set ... --resolution WxH` rendering `integrator` at the profile's size."""
+def scene_args(exp: Experiment, profile: Profile, integrator: Integrator,
+               overrides: dict[str, Any] | None = None) -> list[object]:
+    """`SCENE --set ... --resolution WxH` rendering `integrator` at the profile's size, with the
+    experiment's overrides and then `overrides` (a technique's own)."""
     args: list[object] = [exp.scene]
-    for pointer, value in exp.overrides.items():
+    for pointer, value in [*exp.overrides.items(), *(overrides or {}).items()]:
         args += ["--set", f"{pointer}={json.dumps(value)}"]
     args += ["--set", f"/integrator={json.dumps(integrator, sort_keys=True)}"]
     args += ["--resolution", f"{profile.resolution[0]}x{profile.resolution[1]}"]
@@ -59,14 +61,16 @@ def check(args: Sequence[object]) -> SceneCheck:
                       answer["features"], answer["sceneSha256"])
 
 
-def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:
+def check_scene(exp: Experiment, profile: Profile, integrator: Integrator,
+                overrides: dict[str, Any] | None = None) -> SceneCheck:
     """Checks the scene document a render of `integrator` at the profile's size would use."""
-    return check(scene_args(exp, profile, integrator))
+    return check(scene_args(exp, profile, integrator, overrides))
 
 
 def render(exp: Experiment, profile: Profile, integrator: Integrator, out: Path, seed: int,
-           spp: int | None = None, seconds: float | None = None, threads: int = 1) -> None:
-    args = [paths.renderer_binary(), "render", *scene_args(exp, profile, integrator),
+           spp: int | None = None, seconds: float | None = None, threads: int = 1,
+           overrides: dict[str, Any] | None = None) -> None:
+    args = [paths.renderer_binary(), "render", *scene_args(exp, profile, integrator, overrides),
             "--seed", seed, "--threads", threads, "--no-preview", "--out", out]
     args += ["--time-limit", seconds] if seconds is not None else ["--spp", spp]
     jobs.run_command(args)

@@ -39,6 +39,7 @@ void DirectLighting::addBsdfSamples(const StandardSampling& standard, const Surf
     const Scene& scene = standard.scene();
     const uint32_t n = tracedBsdfSamples();
     const float nBsdf = static_cast<float>(n);
+    const LightReference reference(hit.position, frame.n);  // as SurfaceVertex samples lights
     for (uint32_t r = 0; r < n; ++r) {
         BsdfSample bs;
         if (!material.sample(ctx, wo, standard.sample().get1D({Decision::BsdfLobe, 0, r, n}),
@@ -55,7 +56,7 @@ void DirectLighting::addBsdfSamples(const StandardSampling& standard, const Surf
         if (!scene.intersect(hit.spawn(wi), &lightHit)) {
             *radiance +=
                 bs.weight * escapedRadiance(scene, wi, [&](const Light& light) {
-                    return weight([&] { return standard.lightPdf(0, light, hit.position, wi); });
+                    return weight([&] { return standard.lightPdf(0, light, reference, wi); });
                 });
             continue;
         }
@@ -64,7 +65,7 @@ void DirectLighting::addBsdfSamples(const StandardSampling& standard, const Surf
         const Rgb le = light->emitted(lightHit.geometricNormal, -wi);
         if (le.isBlack()) continue;
         *radiance += bs.weight * le *
-                     weight([&] { return standard.lightPdf(0, *light, hit.position, lightHit); });
+                     weight([&] { return standard.lightPdf(0, *light, reference, lightHit); });
     }
 }
 

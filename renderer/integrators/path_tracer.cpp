@@ -14,6 +14,7 @@ std::unique_ptr<PathTracer> PathTracer::withoutNextEventEstimation(const PathSet
 nlohmann::json PathTracer::parameters() const {
     nlohmann::json p = {
         {"type", name()}, {"max_depth", settings_.maxDepth}, {"rr_depth", settings_.rrDepth}};
+    if (settings_.rrSurvival > 0) p["rr_survival"] = settings_.rrSurvival;
     if (nee_->lightSamples() > 0) p["estimator"] = nee_->parameters();
     return p;
 }

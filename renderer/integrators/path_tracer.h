@@ -33,6 +33,9 @@ namespace rr {
 struct PathSettings {
     int maxDepth = 16;
     int rrDepth = 4;
+    // Russian roulette's survival probability: 0 for min(1, max throughput component × η²),
+    // else this fixed value (pbrt-v1's path integrator: 0.5).
+    float rrSurvival = 0;
 };
 
 class PathTracer final : public SampleIntegrator {

@@ -40,6 +40,7 @@ class PathWalk {
           rays_(rays),
           maxDepth_(settings.maxDepth < 0 ? PathTracer::kDepthCap : settings.maxDepth),
           rrDepth_(settings.rrDepth),
+          rrSurvival_(settings.rrSurvival),
           nee_(nee),
           pixel_(pixel),
           ray_(cameraRay),
@@ -68,9 +69,9 @@ class PathWalk {
     // A medium vertex at distance `t` along the ray: next-event estimation and phase
     // sampling. False when the path ends.
     bool scatterInMedium(float t);
-    // Starts the next segment from the scattering vertex at `position`, its direction sampled
+    // Starts the next segment from the scattering vertex `from`, its direction sampled
     // with density `pdf`; Russian roulette. False when the path ends.
-    bool continuePath(const Ray& next, const Vec3& position, float pdf, bool specular);
+    bool continuePath(const Ray& next, const LightReference& from, float pdf, bool specular);
 
     // Next-event estimation at the vertex `point`, if the estimator samples lights.
     template <class Point>
@@ -92,6 +93,7 @@ class PathWalk {
     const PixelSample& sample_;
     RayCounters& rays_;
     const int maxDepth_, rrDepth_;
+    const float rrSurvival_;  // 0: throughput-driven
     const DirectLightingEstimator& nee_;
     const PixelRecordSlot pixel_;
 
@@ -109,7 +111,7 @@ class PathWalk {
     // survival probability of the media crossed since: the density with which this strategy
     // finds the light the path hits, for MIS.
     float scatterPdf_ = 0;
-    Vec3 previous_;      // the last scattering vertex
+    LightReference previous_{Vec3(0.0f)};  // the last scattering vertex, for MIS
     int depth_ = 0;      // scattering events so far: the index of the next vertex
     int crossings_ = 0;  // index-matched boundaries passed
     // The current ray's free-flight survival budget (medium.h); 0 until drawn.
@@ -203,7 +205,7 @@ bool PathWalk<kMedia, Guide>::scatterAtSurface(const SurfaceHit& hit) {
     if (throughput_.isBlack()) return false;
     const Vec3 wi = frame.toWorld(bs.wi);
     if constexpr (kMedia) medium_ = mediumOnSide(scene_, hit, wi, medium_);
-    return continuePath(hit.spawn(wi), hit.position, bs.pdf, bs.isSpecular());
+    return continuePath(hit.spawn(wi), {hit.position, frame.n}, bs.pdf, bs.isSpecular());
 }
 
 template <bool kMedia, PathGuide Guide>
@@ -221,15 +223,16 @@ bool PathWalk<kMedia, Guide>::scatterInMedium(float t) {
 }
 
 template <bool kMedia, PathGuide Guide>
-bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const Vec3& position, float pdf,
+bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const LightReference& from, float pdf,
                                            bool specular) {
     inFull_ = specular;
     scatterPdf_ = pdf;
-    previous_ = position;
+    previous_ = from;
     ray_ = next;
     flightBudget_ = 0;
     if (depth_ + 1 >= rrDepth_) {
-        const float survive = std::min(1.0f, throughput_.maxComponent() * etaScale_);
+        const float survive =
+            rrSurvival_ > 0 ? rrSurvival_ : std::min(1.0f, throughput_.maxComponent() * etaScale_);
         if (sample_.get1D(Decision::RussianRoulette, vertex()) >= survive) return false;
         throughput_ *= 1.0f / survive;
     }

@@ -31,8 +31,8 @@ Rgb traceShadowRay(const Scene& scene, const Ray& shadow, const Medium* medium, 
 // The density with which `guide` picks direction `w` at `vertex` from `reference`, over the
 // scene's infinite lights, and their radiance along it (ShadingPoint::infiniteLightPdf).
 template <PathGuide Guide>
-float infiniteLightPdf(const Guide& guide, uint32_t vertex, const Vec3& reference, const Vec3& w,
-                       Rgb* radiance) {
+float infiniteLightPdf(const Guide& guide, uint32_t vertex, const LightReference& reference,
+                       const Vec3& w, Rgb* radiance) {
     float pdf = 0;
     *radiance = Rgb(0.0f);
     for (const Light* light : guide.scene().infiniteLights()) {
@@ -85,7 +85,7 @@ class SurfaceVertex final : public ShadingPoint {
 
     bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* ls, float* pdf,
                      const Light** light) override {
-        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, hit_.position, hit_.time,
+        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, lightReference(), hit_.time,
                                       ls, pdf, light);
     }
     Rgb scattering(const Vec3& wi) const override {
@@ -156,16 +156,16 @@ class SurfaceVertex final : public ShadingPoint {
                 source->areaLightPdf = light->pdf(hit_.position, lightHit);
                 if (source->withSelection)
                     source->selectedLightPdf =
-                        out_.guide.lightPdf(out_.vertex, *light, hit_.position, lightHit);
+                        out_.guide.lightPdf(out_.vertex, *light, lightReference(), lightHit);
             }
             return light->emitted(lightHit.geometricNormal, -wi);
         }
     }
     bool sampleLightOf(const Light& light, const Vec2& u, LightSample* ls) const override {
-        return light.sample(hit_.position, u, hit_.time, ls);
+        return light.sample(lightReference(), u, hit_.time, ls);
     }
     float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
-        return rr::infiniteLightPdf(out_.guide, out_.vertex, hit_.position, wi, radiance);
+        return rr::infiniteLightPdf(out_.guide, out_.vertex, lightReference(), wi, radiance);
     }
     void add(const Rgb& contribution) override { out_.add(contribution); }
     void record(std::span<const float> values) override { out_.pixel.add(values); }

@@ -71,6 +71,11 @@ class ShadingPoint {
     virtual const Frame* frame() const = 0;
     // Where the point is (the shadow rays' origin, before any offset).
     virtual Vec3 position() const = 0;
+    // The point and, at a surface, its shading normal: what lights sample from.
+    LightReference lightReference() const {
+        const Frame* f = frame();
+        return f ? LightReference(position(), f->n) : LightReference(position());
+    }
     // The shape of the surface's scattering; false in a medium.
     virtual bool scatteringShape(ScatteringShape* out) const = 0;
     // A direction drawn from the vertex's own scattering distribution (BSDF or phase

@@ -38,12 +38,12 @@ class StandardSampling {
     // Draw `repeat` of `count` of next-event estimation's light and the point on it, with the
     // density of the pair.
     bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                     const Vec3& reference, float time, LightSample* ls, float* pdf,
+                     const LightReference& reference, float time, LightSample* ls, float* pdf,
                      const Light** chosen) {
         float selectPmf;
         const Light* light = scene_.lightSelector().select(
-            sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}), reference,
-            &selectPmf);
+            sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}),
+            reference.point, &selectPmf);
         if (!light) return false;
         const Vec2 u = sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count});
         if (!light->draw(draw, reference, u, time, ls)) return false;
@@ -54,14 +54,15 @@ class StandardSampling {
     // A light sample's contribution (already weighted and scaled by the path) at `vertex`.
     void lightContribution(uint32_t /*vertex*/, const Rgb& /*contribution*/) {}
     // Density with which sampleLight() at `vertex` picks `light` and its point `hit`.
-    float lightPdf(uint32_t /*vertex*/, const AreaLight& light, const Vec3& reference,
+    float lightPdf(uint32_t /*vertex*/, const AreaLight& light, const LightReference& reference,
                    const SurfaceHit& hit) const {
-        return scene_.lightSelector().pmf(light, reference) * light.pdf(reference, hit);
+        return scene_.lightSelector().pmf(light, reference.point) * light.pdf(reference.point, hit);
     }
     // The same for an infinite light seen in direction `w`.
-    float lightPdf(uint32_t /*vertex*/, const Light& light, const Vec3& reference,
+    float lightPdf(uint32_t /*vertex*/, const Light& light, const LightReference& reference,
                    const Vec3& w) const {
-        return scene_.lightSelector().pmf(light, reference) * light.directionPdf(w);
+        return scene_.lightSelector().pmf(light, reference.point) *
+               light.directionPdf(reference, w);
     }
     // The surface scattering decision (lobe, then direction) at `vertex`.
     bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,

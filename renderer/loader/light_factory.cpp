@@ -47,6 +47,15 @@ Frame readRotation(ObjectReader& j) {
     return r;
 }
 
+// "sampling": how light samples draw directions (env_sampling.h); `luminance` by default
+// (a constant environment: uniform, the same thing).
+EnvSampling readEnvSampling(ObjectReader& j) {
+    const std::string name =
+        j.getChoice("sampling", {"luminance", "cosine", "uniform"}, std::string("luminance"));
+    if (name == "cosine") return EnvSampling::Cosine;
+    return name == "uniform" ? EnvSampling::Uniform : EnvSampling::Luminance;
+}
+
 std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& assets) {
     const std::string layoutName = j.getChoice("layout", {"latlong", "probe"});
     const Rgb scale = j.getRgb("scale", Rgb(1.0f));
@@ -70,7 +79,8 @@ std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& 
         image = resampleToLatLong(image, *layout, latLongWidth);
         layout = makeEnvLayout("latlong");
     }
-    return std::make_unique<EnvironmentMap>(std::move(image), std::move(layout), scale, toWorld);
+    return std::make_unique<EnvironmentMap>(std::move(image), std::move(layout), scale, toWorld,
+                                            readEnvSampling(j));
 }
 
 // {"radiance": L} is a constant environment, {"file": …} a map.
@@ -80,7 +90,7 @@ std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& ass
                "an environment needs either \"radiance\" (constant) or \"file\" "
                "(a map), not both or neither");
     if (j.has("file")) return makeEnvironmentMap(j, assets);
-    return std::make_unique<ConstantEnvironment>(j.getRgb("radiance"));
+    return std::make_unique<ConstantEnvironment>(j.getRgb("radiance"), readEnvSampling(j));
 }
 
 }  // namespace

@@ -35,6 +35,8 @@ RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
     parseSamplerType(sampler, &r.sampler);
     path->maxDepth = static_cast<int>(j.getInt("max_depth", 16, Range::closed(-1, 100000)));
     path->rrDepth = static_cast<int>(j.getInt("rr_depth", 4, Range::closed(1, 100000)));
+    if (j.has("rr_survival"))
+        path->rrSurvival = static_cast<float>(j.getNumber("rr_survival", Range{0, 1, true, false}));
     r.lightSelection = j.getChoice("light_selection", {"power", "uniform"}, "power") == "uniform"
                            ? LightSelection::Uniform
                            : LightSelection::Power;

@@ -22,6 +22,17 @@ namespace rr {
 // estimators drawing many candidates and finishing few use (sampleProxy(), RIS).
 enum class LightDraw : uint8_t { Exact, Proxy };
 
+// Where light is gathered: the point, and at a surface its shading normal (unit; zero in a
+// medium or where there is none). Only lights whose sampling follows the receiver's
+// orientation read the normal (an environment sampled cosine-weighted: env_sampling.h), so a
+// point converts to a reference without one.
+struct LightReference {
+    LightReference(const Vec3& point_, const Vec3& normal_ = Vec3(0.0f))  // NOLINT: implicit
+        : point(point_), normal(normal_) {}
+    Vec3 point;
+    Vec3 normal;
+};
+
 struct LightSample {
     Vec3 direction;        // unit, from the reference point towards the light
     Vec3 position;         // sampled point on the light (shadow-ray target)
@@ -36,19 +47,22 @@ class Light {
   public:
     virtual ~Light() = default;
 
-    virtual bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const = 0;
+    virtual bool sample(const LightReference& reference, Vec2 u, float time,
+                        LightSample* out) const = 0;
     // A cheaper stand-in for sample(), for estimators that draw many candidates and finish
     // few (RIS's ĝ needs only an approximation of the integrand): a sample from a density that
     // may differ from sample()'s (`pdf` is the stand-in's own, exact) whose `radiance` may be
     // approximate; exactRadiance() gives the light's true radiance for it. By default sample()
     // itself; an environment map draws from blocks of texels (EnvironmentMap).
-    virtual bool sampleProxy(const Vec3& reference, Vec2 u, float time, LightSample* out) const {
+    virtual bool sampleProxy(const LightReference& reference, Vec2 u, float time,
+                             LightSample* out) const {
         return sample(reference, u, time, out);
     }
     // The radiance that arrives along a sample of sampleProxy() (or of sample(): its own).
     virtual Rgb exactRadiance(const LightSample& s) const { return s.radiance; }
     // sample() or sampleProxy(), as `how` says.
-    bool draw(LightDraw how, const Vec3& reference, Vec2 u, float time, LightSample* out) const {
+    bool draw(LightDraw how, const LightReference& reference, Vec2 u, float time,
+              LightSample* out) const {
         return how == LightDraw::Proxy ? sampleProxy(reference, u, time, out)
                                        : sample(reference, u, time, out);
     }
@@ -63,8 +77,11 @@ class Light {
     virtual bool isInfinite() const { return false; }
     // Radiance arriving along a ray that leaves the scene in direction `w` (unit, world).
     virtual Rgb escapedRadiance(const Vec3& /*w*/) const { return Rgb(0.0f); }
-    // Solid-angle density with which sample() yields direction `w` (infinite lights).
-    virtual float directionPdf(const Vec3& /*w*/) const { return 0; }
+    // Solid-angle density with which sample() from `reference` yields direction `w` (infinite
+    // lights).
+    virtual float directionPdf(const LightReference& /*reference*/, const Vec3& /*w*/) const {
+        return 0;
+    }
     // The inverse of sample(), for TAIS's point-on-light importance map, which lives on the
     // coordinates u: the u for which sample(reference, u, …) yields the point `point` on this
     // light, seen in unit direction `direction` from `reference` (infinite lights: the
@@ -73,7 +90,7 @@ class Light {
     // Shape::invertSampleDirection) or when no u yields the point (the light's density is zero
     // there); TAIS then leaves that light's coordinates unwarped. Where sample() is not
     // injective (a pole of a sphere, the seam of a lat-long map) one of the preimages.
-    virtual bool invertSample(const Vec3& /*reference*/, const Vec3& /*direction*/,
+    virtual bool invertSample(const LightReference& /*reference*/, const Vec3& /*direction*/,
                               const Vec3& /*point*/, Vec2* /*u*/) const {
         return false;
     }

@@ -6,7 +6,7 @@ import unittest
 import jsonschema
 
 from fixtures import load_config, valid
-from harness import config, paths
+from harness import config, paths, renders
 from harness.errors import ConfigError
 
 
@@ -138,6 +138,10 @@ class BadConfigTest(unittest.TestCase):
              "set by the harness"),
             (lambda d: d.update(set={"/integrator/type": "path"}), "/set/~1integrator~1type",
              "set by the harness"),
+            (lambda d: d["techniques"]["better"].update(set={"/render/seed": 3}),
+             "/techniques/better/set/~1render~1seed", "set by the harness"),
+            (lambda d: d["techniques"]["better"].update(set=[]), "/techniques/better/set",
+             "JSON pointer -> value"),
             (lambda d: d["techniques"].update({"bad name": {"integrator": {"type": "path"}}}),
              "/techniques/bad name", "letters, digits"),
             (lambda d: d["paper"].update(metric="rmse"), "/paper/metric",
@@ -163,6 +167,26 @@ class BadConfigTest(unittest.TestCase):
             with self.subTest(pointer=pointer):
                 self.assertRejects(self.mutated(change), pointer, fragment)
 
+
+class TechniqueOverridesTest(unittest.TestCase):
+    def test_a_techniques_set_follows_the_experiments_in_its_renders_only(self):
+        doc = valid()
+        doc["techniques"]["better"]["set"] = {"/render/light_selection": "uniform",
+                                              "/render/sampler": "stratified"}
+        exp = load_config(doc)
+        profile = exp.profiles["quick"]
+        better = exp.techniques["better"]
+        args = [str(a) for a in renders.scene_args(exp, profile, better.integrator,
+                                                   better.overrides)]
+        sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
+        self.assertEqual(sets[:3], ['/render/sampler="independent"',
+                                    '/render/light_selection="uniform"',
+                                    '/render/sampler="stratified"'])
+        base = exp.techniques["base"]
+        self.assertEqual(base.overrides, {})
+        self.assertNotIn('/render/light_selection="uniform"',
+                         [str(a) for a in renders.scene_args(exp, profile, base.integrator,
+                                                             base.overrides)])
 
 class MatchedConfigTest(unittest.TestCase):
     """matched_spp and "seconds": "matched", on a config whose "better" is fixed-spp."""

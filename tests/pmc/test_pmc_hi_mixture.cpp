@@ -116,7 +116,8 @@ class ScenePoint final : public ShadingPoint {
         float pdf = 0;
         *radiance = Rgb(0.0f);
         for (const Light* light : scene_.infiniteLights()) {
-            pdf += scene_.lightSelector().pmf(*light, Vec3(0.0f)) * light->directionPdf(wi);
+            pdf += scene_.lightSelector().pmf(*light, Vec3(0.0f)) *
+                   light->directionPdf(Vec3(0.0f), wi);
             *radiance += light->escapedRadiance(wi);
         }
         return pdf;

@@ -1,5 +1,7 @@
 #include "support/mean_agreement.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 
 namespace rr::test {
@@ -54,6 +56,22 @@ Disagreement largestDisagreement(const std::vector<TestRender>& renders, const F
                           std::to_string(b.mean) + " ± " + std::to_string(b.standardError);
         }
     return worst;
+}
+
+void expectImageMeansAgreePairwise(const std::vector<TestRender>& renders,
+                                   const std::vector<std::string>& names, double threshold,
+                                   const std::string& what) {
+    for (size_t i = 0; i < renders.size(); ++i)
+        for (size_t j = i + 1; j < renders.size(); ++j)
+            for (int c = 0; c < 3; ++c) {
+                const Estimate a = imageMean(renders[i].film, c);
+                const Estimate b = imageMean(renders[j].film, c);
+                const double z = (a.mean - b.mean) / std::hypot(a.standardError, b.standardError);
+                EXPECT_LT(std::abs(z), threshold)
+                    << what << ": " << names[i] << " vs " << names[j] << ", channel " << c
+                    << ": " << a.mean << " ± " << a.standardError << " vs " << b.mean << " ± "
+                    << b.standardError;
+            }
 }
 
 }  // namespace rr::test

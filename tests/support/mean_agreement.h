@@ -23,4 +23,11 @@ struct Disagreement {
 Disagreement largestDisagreement(const std::vector<TestRender>& renders, const Film& reference,
                                  int block, const std::string& label);
 
+// Independent estimates of one image (renders[i] named names[i]) agree pairwise: each
+// channel's image mean, by |z| < `threshold` (the caller's Šidák-corrected level over
+// pairs × 3 channels). Failures name the pair, the channel and both estimates, after `what`.
+void expectImageMeansAgreePairwise(const std::vector<TestRender>& renders,
+                                   const std::vector<std::string>& names, double threshold,
+                                   const std::string& what);
+
 }  // namespace rr::test

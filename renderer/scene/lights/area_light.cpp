@@ -4,10 +4,11 @@
 
 namespace rr {
 
-bool AreaLight::sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const {
+bool AreaLight::sample(const LightReference& reference, Vec2 u, float time,
+                       LightSample* out) const {
     ShapeSample s;
-    if (!shape_->sampleDirection(reference, u, time, &s)) return false;
-    const Vec3 d = s.position - reference;
+    if (!shape_->sampleDirection(reference.point, u, time, &s)) return false;
+    const Vec3 d = s.position - reference.point;
     const float dist = length(d);
     if (dist == 0) return false;
     out->direction = d / dist;
@@ -24,8 +25,9 @@ float AreaLight::pdf(const Vec3& reference, const SurfaceHit& hit) const {
     return shape_->directionPdf(reference, hit);
 }
 
-bool AreaLight::invertSample(const Vec3& reference, const Vec3&, const Vec3& point, Vec2* u) const {
-    return shape_->invertSampleDirection(reference, point, u);
+bool AreaLight::invertSample(const LightReference& reference, const Vec3&, const Vec3& point,
+                             Vec2* u) const {
+    return shape_->invertSampleDirection(reference.point, point, u);
 }
 
 Rgb AreaLight::power() const {

@@ -11,12 +11,13 @@ class AreaLight final : public Light {
     AreaLight(const Shape* shape, const Rgb& radiance, bool twoSided)
         : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
 
-    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    bool sample(const LightReference& reference, Vec2 u, float time,
+                LightSample* out) const override;
     float pdf(const Vec3& reference, const SurfaceHit& hit) const override;
     // The shape's inverse (Shape::invertSampleDirection); `direction` is not needed: a point of
     // the shape determines u. Given for any point of the shape, also one that does not emit
     // towards the reference (one-sided lights seen from behind), for which sample() refuses u.
-    bool invertSample(const Vec3& reference, const Vec3& direction, const Vec3& point,
+    bool invertSample(const LightReference& reference, const Vec3& direction, const Vec3& point,
                       Vec2* u) const override;
     bool canInvertSample() const override { return shape_->invertsSamples(); }
     Rgb power() const override;

@@ -38,8 +38,8 @@ int proxyBlockSide(int width, int height) {
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout, const Rgb& scale,
-                               const Frame& toWorld)
-    : image_(std::move(image)), layout_(std::move(layout)), toWorld_(toWorld) {
+                               const Frame& toWorld, EnvSampling sampling)
+    : image_(std::move(image)), layout_(std::move(layout)), toWorld_(toWorld), sampling_(sampling) {
     const int width = image_.width, height = image_.height;
     std::vector<float> weights(image_.pixels.size()), jacobians(image_.pixels.size());
     double integral[3] = {0, 0, 0};
@@ -65,7 +65,7 @@ EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout
         }
     distribution_ = Distribution2D(weights, width, height);
     radianceIntegral_ = Rgb(float(integral[0]), float(integral[1]), float(integral[2]));
-    buildProxy(weights, jacobians);
+    if (sampling_ == EnvSampling::Luminance) buildProxy(weights, jacobians);
 }
 
 void EnvironmentMap::buildProxy(const std::vector<float>& weights,
@@ -117,7 +117,15 @@ void EnvironmentMap::aim(const Vec3& reference, const Vec3& direction, LightSamp
     out->isDelta = false;
 }
 
-bool EnvironmentMap::sample(const Vec3& reference, Vec2 u, float, LightSample* out) const {
+bool EnvironmentMap::sample(const LightReference& reference, Vec2 u, float,
+                            LightSample* out) const {
+    if (sampling_ != EnvSampling::Luminance) {
+        Vec3 w;
+        if (!sampleEnvDirection(sampling_, reference, u, &w, &out->pdf)) return false;
+        aim(reference.point, w, out);
+        out->radiance = escapedRadiance(w);
+        return !out->radiance.isBlack();
+    }
     float imagePdf;
     const Vec2 st = distribution_.sample(u, &imagePdf);
     Vec3 local;
@@ -126,15 +134,15 @@ bool EnvironmentMap::sample(const Vec3& reference, Vec2 u, float, LightSample* o
     // density below is then that of a distribution of total mass slightly below 1, which
     // keeps the estimator unbiased).
     if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian)) return false;
-    setDirection(reference, local, out);
+    setDirection(reference.point, local, out);
     // Radiance and density of the direction itself, exactly as escaped rays and MIS see them
     // (the texel is found again from the direction, so the three always agree).
     out->radiance = escapedRadiance(out->direction);
-    out->pdf = directionPdf(out->direction);
+    out->pdf = directionPdf(reference, out->direction);
     return out->pdf > 0 && !out->radiance.isBlack();
 }
 
-bool EnvironmentMap::sampleProxy(const Vec3& reference, Vec2 u, float time,
+bool EnvironmentMap::sampleProxy(const LightReference& reference, Vec2 u, float time,
                                  LightSample* out) const {
     if (proxy_.block == 1) return sample(reference, u, time, out);
     float imagePdf;
@@ -144,7 +152,7 @@ bool EnvironmentMap::sampleProxy(const Vec3& reference, Vec2 u, float time,
     float jacobian;
     if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian) || !(jacobian > 0))
         return false;
-    setDirection(reference, local, out);
+    setDirection(reference.point, local, out);
     out->radiance = proxy_.radiance[size_t(cell)];
     // The density of the point's direction itself (the layout's Jacobian there, not a texel's
     // mean): the stand-in's pdf is exact, only its radiance approximates.
@@ -156,13 +164,17 @@ Rgb EnvironmentMap::escapedRadiance(const Vec3& w) const {
     return image_.pixels[size_t(texelIndex(layout_->imagePoint(toWorld_.toLocal(w))))];
 }
 
-float EnvironmentMap::directionPdf(const Vec3& w) const {
+float EnvironmentMap::directionPdf(const LightReference& reference, const Vec3& w) const {
+    if (sampling_ != EnvSampling::Luminance) return envDirectionPdf(sampling_, reference, w);
     const Vec2 st = layout_->imagePoint(toWorld_.toLocal(w));
     const float jacobian = layout_->jacobian(st);
     return jacobian > 0 ? distribution_.pdf(st) / jacobian : 0.0f;
 }
 
-bool EnvironmentMap::invertSample(const Vec3&, const Vec3& direction, const Vec3&, Vec2* u) const {
+bool EnvironmentMap::invertSample(const LightReference& reference, const Vec3& direction,
+                                  const Vec3&, Vec2* u) const {
+    if (sampling_ != EnvSampling::Luminance)
+        return invertEnvDirection(sampling_, reference, direction, u);
     // The frame is orthonormal: toLocal undoes toWorld (sample()'s normalisation only removes
     // rounding). The image point is found exactly as directionPdf finds it, so invertSample
     // succeeds exactly where the density of the direction is positive.

@@ -11,6 +11,10 @@
 // there; the solid-angle density is p(s, t) / (dω/(ds dt)) (the change of variables from image
 // to sphere).
 //
+// `sampling` other than `luminance` (env_sampling.h) ignores the map when drawing directions:
+// cosine-weighted about the receiver's normal or uniform, as pbrt-v1's plain `infinite` light,
+// for baselines configured like the papers' renderers. The stand-in is then sample() itself.
+//
 // Resampling's stand-in (sampleProxy): the same map coarsened to blocks of texels, so that a
 // candidate reads two small tables that stay in cache instead of a megabyte-scale texel table
 // and the texel (about 400 ns per candidate on Galileo's 1000 × 1000 probe, against a shadow
@@ -27,6 +31,7 @@
 #include "sampling/distribution2d.h"
 #include "scene/light.h"
 #include "scene/lights/env_layout.h"
+#include "scene/lights/env_sampling.h"
 
 namespace rr {
 
@@ -36,10 +41,12 @@ class EnvironmentMap final : public Light {
     // leaves some). Its radiance is multiplied by `scale`; `toWorld` is a rotation (its axes
     // are the images of the map's X, Y, Z).
     EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout, const Rgb& scale,
-                   const Frame& toWorld);
+                   const Frame& toWorld, EnvSampling sampling = EnvSampling::Luminance);
 
-    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
-    bool sampleProxy(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    bool sample(const LightReference& reference, Vec2 u, float time,
+                LightSample* out) const override;
+    bool sampleProxy(const LightReference& reference, Vec2 u, float time,
+                     LightSample* out) const override;
     Rgb exactRadiance(const LightSample& s) const override { return escapedRadiance(s.direction); }
     float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
     // Flux through the scene's bounding sphere: π r² ∫ L dω (its cross-section times the
@@ -48,14 +55,14 @@ class EnvironmentMap final : public Light {
     bool isDelta() const override { return false; }
     bool isInfinite() const override { return true; }
     Rgb escapedRadiance(const Vec3& w) const override;
-    float directionPdf(const Vec3& w) const override;
+    float directionPdf(const LightReference& reference, const Vec3& w) const override;
     // sample() backwards: the direction into the map's frame, its image point (the layout's
     // imagePoint), and the u that Distribution2D::sample maps there (Distribution2D::invert).
     // False where the density is zero, as no u yields the direction there: the lat-long poles
     // and the probe's rim (no solid angle), texels of zero weight (black ones, the probe's
-    // masked ones).
+    // masked ones). Other `sampling`: invertEnvDirection.
     bool canInvertSample() const override { return true; }
-    bool invertSample(const Vec3& reference, const Vec3& direction, const Vec3& point,
+    bool invertSample(const LightReference& reference, const Vec3& direction, const Vec3& point,
                       Vec2* u) const override;
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
 
@@ -95,6 +102,7 @@ class EnvironmentMap final : public Light {
     Distribution2D distribution_;
     Rgb radianceIntegral_;
     Proxy proxy_;
+    EnvSampling sampling_;
     float radius_ = 1;
 };
 

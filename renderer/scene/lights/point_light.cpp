@@ -2,8 +2,8 @@
 
 namespace rr {
 
-bool PointLight::sample(const Vec3& reference, Vec2, float, LightSample* out) const {
-    const Vec3 d = position_ - reference;
+bool PointLight::sample(const LightReference& reference, Vec2, float, LightSample* out) const {
+    const Vec3 d = position_ - reference.point;
     const float dist2 = lengthSquared(d);
     if (dist2 == 0) return false;
     const float dist = std::sqrt(dist2);

@@ -10,7 +10,8 @@ class PointLight final : public Light {
     PointLight(const Vec3& position, const Rgb& intensity)
         : position_(position), intensity_(intensity) {}
 
-    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    bool sample(const LightReference& reference, Vec2 u, float time,
+                LightSample* out) const override;
     float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
     Rgb power() const override { return intensity_ * (4.0f * kPi); }
     bool isDelta() const override { return true; }

@@ -34,8 +34,8 @@ float SpotLight::falloff(const Vec3& direction) const {
     return x * x * (3 - 2 * x);
 }
 
-bool SpotLight::sample(const Vec3& reference, Vec2, float, LightSample* out) const {
-    const Vec3 d = position_ - reference;
+bool SpotLight::sample(const LightReference& reference, Vec2, float, LightSample* out) const {
+    const Vec3 d = position_ - reference.point;
     const float dist2 = lengthSquared(d);
     if (dist2 == 0) return false;
     const float dist = std::sqrt(dist2);

@@ -16,7 +16,8 @@ class SpotLight final : public Light {
     SpotLight(const Vec3& position, const Vec3& axis, const Rgb& intensity, float cone,
               float falloffStart);
 
-    bool sample(const Vec3& reference, Vec2 u, float time, LightSample* out) const override;
+    bool sample(const LightReference& reference, Vec2 u, float time,
+                LightSample* out) const override;
     float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
     // Φ = ∫ I dω = 2π I₀ ∫ falloff(μ) dμ over μ = cos θ ∈ [cos θc, 1]
     //   = 2π I₀ [(1 − cos θs) + ½ (cos θs − cos θc)] = π I₀ (2 − cos θs − cos θc).

@@ -65,15 +65,15 @@ float MapGuide::selectionPmf(const Light& light, const Vec3& reference) const {
     return a * maps_.lightSelection->probability(light.index()) + (1 - a) * standard;
 }
 
-float MapGuide::pointOnLightPdf(const Light& light, const Vec3& reference, const Vec3& direction,
-                                const Vec3& point) const {
+float MapGuide::pointOnLightPdf(const Light& light, const LightReference& reference,
+                                const Vec3& direction, const Vec3& point) const {
     Vec2 u;
     if (!warpsPointOn(light) || !light.invertSample(reference, direction, point, &u)) return 1;
     return maps_.pointOnLight->pdf(u);
 }
 
 bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                           const Vec3& reference, float time, LightSample* ls, float* pdf,
+                           const LightReference& reference, float time, LightSample* ls, float* pdf,
                            const Light** chosen) {
     if (!guidesLights(vertex))
         return StandardSampling::sampleLight(vertex, repeat, count, draw, reference, time, ls, pdf,
@@ -89,12 +89,12 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
         float unused;
         light = uSelect < a ? scene().lights()[size_t(maps_.lightSelection->sampleCell(
                                   rescale(uSelect, 0, a), &unused))]
-                            : selector.select(rescale(uSelect, a, 1), reference, &unused);
+                            : selector.select(rescale(uSelect, a, 1), reference.point, &unused);
         if (!light) return false;
-        selectPmf = selectionPmf(*light, reference);
+        selectPmf = selectionPmf(*light, reference.point);
         record(MapKind::LightSelection, light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f), true);
     } else {
-        light = selector.select(uSelect, reference, &selectPmf);
+        light = selector.select(uSelect, reference.point, &selectPmf);
         if (!light) return false;
     }
     float warp = 1;
@@ -117,19 +117,19 @@ void MapGuide::lightContribution(uint32_t vertex, const Rgb& contribution) {
     lightRecords_ = 0;
 }
 
-float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
+float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const LightReference& reference,
                          const SurfaceHit& hit) const {
     if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, hit);
-    const Vec3 direction = normalize(hit.position - reference);
-    return selectionPmf(light, reference) * light.pdf(reference, hit) *
+    const Vec3 direction = normalize(hit.position - reference.point);
+    return selectionPmf(light, reference.point) * light.pdf(reference.point, hit) *
            pointOnLightPdf(light, reference, direction, hit.position);
 }
 
-float MapGuide::lightPdf(uint32_t vertex, const Light& light, const Vec3& reference,
+float MapGuide::lightPdf(uint32_t vertex, const Light& light, const LightReference& reference,
                          const Vec3& w) const {
     if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, w);
-    return selectionPmf(light, reference) * light.directionPdf(w) *
-           pointOnLightPdf(light, reference, w, reference + w);
+    return selectionPmf(light, reference.point) * light.directionPdf(reference, w) *
+           pointOnLightPdf(light, reference, w, reference.point + w);
 }
 
 bool MapGuide::sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,

@@ -44,12 +44,13 @@ class MapGuide : public StandardSampling {
 
     float flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf);
     bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                     const Vec3& reference, float time, LightSample* ls, float* pdf,
+                     const LightReference& reference, float time, LightSample* ls, float* pdf,
                      const Light** chosen);
     void lightContribution(uint32_t vertex, const Rgb& contribution);
-    float lightPdf(uint32_t vertex, const AreaLight& light, const Vec3& reference,
+    float lightPdf(uint32_t vertex, const AreaLight& light, const LightReference& reference,
                    const SurfaceHit& hit) const;
-    float lightPdf(uint32_t vertex, const Light& light, const Vec3& reference, const Vec3& w) const;
+    float lightPdf(uint32_t vertex, const Light& light, const LightReference& reference,
+                   const Vec3& w) const;
     bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
                     const Frame& frame, const Vec3& wo, const Rgb& radiance, BsdfSample* bs);
     float bsdfPdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
@@ -84,8 +85,8 @@ class MapGuide : public StandardSampling {
     // Eq. (2) for the light-selection map: α q(light) + (1 − α) p_selector(light).
     float selectionPmf(const Light& light, const Vec3& reference) const;
     // The point-on-light map's density at the coordinates of `point` (1 when not warped).
-    float pointOnLightPdf(const Light& light, const Vec3& reference, const Vec3& direction,
-                          const Vec3& point) const;
+    float pointOnLightPdf(const Light& light, const LightReference& reference,
+                          const Vec3& direction, const Vec3& point) const;
     const InvertedMap2D* directionMap() const {
         return bounce_ < int(maps_.scatterDirection.size()) ? &maps_.scatterDirection[bounce_]
                                                             : nullptr;

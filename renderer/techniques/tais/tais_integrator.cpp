@@ -27,23 +27,25 @@ TaisIntegrator::TaisIntegrator(const TaisSettings& settings,
 
 nlohmann::json TaisIntegrator::parameters() const {
     static const char* credits[] = {"path", "downstream"};
-    return {{"type", name()},
-            {"maps", settings_.automatic ? "auto" : "listed"},
-            {"maps_used", mapList(settings_)},
-            {"alpha", settings_.alpha},
-            {"time_cells", settings_.timeCells},
-            {"scatter_distance_cells", settings_.scatterDistanceCells},
-            {"lens_size", settings_.lensSize},
-            {"point_on_light_size", settings_.pointOnLightSize},
-            {"scatter_direction_size", settings_.scatterDirectionSize},
-            {"scatter_direction_bounces", settings_.scatterDirectionBounces},
-            {"bifurcation_vertices", settings_.bifurcationVertices},
-            {"credit", credits[static_cast<int>(settings_.credit)]},
-            {"contribution_filter", settings_.contributionFilter},
-            {"band_rows", settings_.bandRows},
-            {"band_warmup_rows", settings_.bandWarmupRows},
-            {"max_depth", settings_.path.maxDepth},
-            {"rr_depth", settings_.path.rrDepth}};
+    nlohmann::json p = {{"type", name()},
+                        {"maps", settings_.automatic ? "auto" : "listed"},
+                        {"maps_used", mapList(settings_)},
+                        {"alpha", settings_.alpha},
+                        {"time_cells", settings_.timeCells},
+                        {"scatter_distance_cells", settings_.scatterDistanceCells},
+                        {"lens_size", settings_.lensSize},
+                        {"point_on_light_size", settings_.pointOnLightSize},
+                        {"scatter_direction_size", settings_.scatterDirectionSize},
+                        {"scatter_direction_bounces", settings_.scatterDirectionBounces},
+                        {"bifurcation_vertices", settings_.bifurcationVertices},
+                        {"credit", credits[static_cast<int>(settings_.credit)]},
+                        {"contribution_filter", settings_.contributionFilter},
+                        {"band_rows", settings_.bandRows},
+                        {"band_warmup_rows", settings_.bandWarmupRows},
+                        {"max_depth", settings_.path.maxDepth},
+                        {"rr_depth", settings_.path.rrDepth}};
+    if (settings_.path.rrSurvival > 0) p["rr_survival"] = settings_.path.rrSurvival;
+    return p;
 }
 
 namespace {
