@@ -119,6 +119,7 @@ class Experiment:
     overrides: dict[str, Any]  # JSON pointer -> value
     techniques: dict[str, Technique]  # in config order
     baseline: str
+    also_baseline: str | None  # a second technique gains are measured against
     metrics: list[str]  # the first is the primary metric
     reference_integrator: Integrator
     profiles: dict[str, Profile]
@@ -251,6 +252,10 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
         yield from _profile_disagreements(name, doc["profiles"][name])
     if doc["baseline"] not in doc["techniques"]:
         yield "/baseline", "must name one of the techniques"
+    if "also_baseline" in doc and doc["also_baseline"] not in doc["techniques"]:
+        yield "/also_baseline", "must name one of the techniques"
+    if doc.get("also_baseline") == doc["baseline"]:
+        yield "/also_baseline", "must differ from the baseline"
     for name, t in doc["techniques"].items():
         for i, pointer in enumerate(t.get("samples_at", [])):
             if not isinstance(_resolve(t["integrator"], pointer), int):
@@ -361,6 +366,7 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
                                     t.get("samples_at", []), t.get("set", {}))
                     for name, t in doc["techniques"].items()},
         baseline=doc["baseline"],
+        also_baseline=doc.get("also_baseline"),
         metrics=doc["metrics"],
         reference_integrator=doc["reference"]["integrator"],
         profiles={name: _profile(name, doc["profiles"][name]) for name in PROFILES},

@@ -194,20 +194,27 @@ def _gain(base_group: list[RunRecord], group: list[RunRecord], metric: str) -> s
 
 def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
     """Per technique and budget: each metric's mean and 95 % interval over seeds, the spp and
-    time reached, and the gain over the baseline at the same budget. Duplicated records (see
+    time reached, and the gain over the baseline (and the also_baseline) at the same budget.
+    Duplicated records (see
     matched_duplicates) make a fixed-spp technique's entry at a matched time budget."""
     groups = group_by_key(sorted(records, key=lambda r: r.seed))
+
+    def gains(baseline: str, key: TechniqueBudget, group: list[RunRecord]) -> dict[str, Any]:
+        base_group = groups.get(TechniqueBudget(baseline, key.kind, key.budget))
+        if key.technique == baseline or not base_group:
+            return {}
+        return {m: _gain(base_group, group, m) for m in exp.metrics}
+
     summary = []
     for key, group in groups.items():
-        base_group = groups.get(TechniqueBudget(exp.baseline, key.kind, key.budget))
-        compared = key.technique != exp.baseline and base_group
         summary.append(SummaryEntry(
             key.technique, key.kind, key.budget,
             spp=stats.estimate([r.spp for r in group]),
             time=stats.estimate([r.time for r in group]),
             metrics={m: _metric_summary(group, m) for m in exp.metrics},
-            gain={m: _gain(base_group, group, m) for m in exp.metrics} if compared else {},
-            duplicate_of=group[0].duplicate_of))
+            gain=gains(exp.baseline, key, group),
+            duplicate_of=group[0].duplicate_of,
+            also_gain=gains(exp.also_baseline, key, group) if exp.also_baseline else None))
     return summary
 
 
@@ -260,6 +267,7 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
                                 **({"samples_at": t.samples_at} if t.samples_at else {})}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
+        **({"also_baseline": exp.also_baseline} if exp.also_baseline else {}),
         "metrics": exp.metrics,
         "relmse_reject": exp.relmse_reject,
         "resolution": list(profile.resolution),

@@ -73,6 +73,8 @@ class SummaryEntry(TechniqueBudget):
     metrics: dict[str, MetricSummary | None]  # the experiment's metrics; None: undefined
     gain: dict[str, Gain | None]  # over the baseline at the same budget; {} for the baseline
     duplicate_of: OriginalBudget | None = None
+    # over the experiment's also_baseline; None without one, {} for it
+    also_gain: dict[str, Gain | None] | None = None
 
     @classmethod
     def from_json(cls, value: dict[str, Any]) -> SummaryEntry:
@@ -81,9 +83,9 @@ class SummaryEntry(TechniqueBudget):
             spp=_with_interval(Estimate, value["spp"]),
             time=_with_interval(Estimate, value["time"]),
             metrics={name: _metric_summary(m) for name, m in value["metrics"].items()},
-            gain={name: None if g is None else _with_interval(Gain, g)
-                  for name, g in value["gain"].items()},
-            duplicate_of=_original_budget(value.get("duplicate_of")))
+            gain=_gains(value["gain"]),
+            duplicate_of=_original_budget(value.get("duplicate_of")),
+            also_gain=_gains(value.get("also_gain")))
 
 
 @dataclass(frozen=True)
@@ -111,6 +113,12 @@ def _metric_summary(value: dict[str, Any] | None) -> MetricSummary | None:
     if value is None:
         return None
     return _with_interval(EfficiencyEstimate if "estimator" in value else Estimate, value)
+
+
+def _gains(value: dict[str, Any] | None) -> dict[str, Gain | None] | None:
+    if value is None:
+        return None
+    return {name: None if g is None else _with_interval(Gain, g) for name, g in value.items()}
 
 
 def _original_budget(value: dict[str, Any] | None) -> OriginalBudget | None:

@@ -61,6 +61,32 @@ class TablesTest(unittest.TestCase):
         self.assertAlmostEqual(float(better[0]["mean"]), 0.2)
         self.assertEqual(better[0]["verdict"], "reproduced")
 
+    def test_a_second_baseline_gets_its_own_gain_column(self):
+        doc = document()
+        doc["techniques"]["default"] = {}
+        doc["also_baseline"] = "default"
+        default = [0.5, 0.55, 0.45, 0.52, 0.48]
+        entries = [summary_entry("base", "spp", 16, BASE),
+                   summary_entry("better", "spp", 16, BETTER, stats.gain(BASE, BETTER, False)),
+                   summary_entry("default", "spp", 16, default, stats.gain(BASE, default, False))]
+        also = {"base": stats.gain(default, BASE, False), "better": stats.gain(default, BETTER,
+                                                                                False)}
+        doc["summary"] = [{**to_json(e), "also_gain": ({"sigma_over_mu": to_json(also[e.technique]),
+                                                        "p_eff": None}
+                                                       if e.technique in also else {})}
+                          for e in entries]
+        text = tables.markdown("paper", [doc])
+        self.assertIn("| gain over baseline (95 %) | gain over 2nd baseline (95 %) |", text)
+        row = [line for line in text.splitlines() if line.startswith("| fig5 | better |")][0]
+        # over base ×5, over default 0.5 / 0.2 = ×2.5; the verdict stays against base
+        self.assertIn("| ×5 [", row)
+        self.assertIn("| ×2.5 [", row)
+        self.assertIn("reproduced", row)
+        self.assertIn("fig5: default (baseline base)", text)
+        rows = list(csv.DictReader(io.StringIO(tables.csv_text([doc]))))
+        better = [r for r in rows if r["technique"] == "better" and r["metric"] == "sigma_over_mu"]
+        self.assertAlmostEqual(float(better[0]["also_gain"]), 2.5)
+
     def test_latex_escapes_names(self):
         doc = document()
         doc["experiment"] = "paper/fig_5"
