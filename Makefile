@@ -13,6 +13,9 @@ SUDO       := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # Debian's interpreter: it sees Debian's numpy, scipy, matplotlib and OpenImageIO.
 PYTHON     := /usr/bin/python3
 HARNESS     = BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile $(PROFILE)
+# ONLY=<paper> or <paper>/<figure> (several, space-separated): references, experiments and
+# reproduce take those configs only, so a long profile runs in resumable chunks.
+ONLY_CONFIGS = $(foreach o,$(ONLY),$(if $(findstring /,$(o)),configs/experiments/$(o).json,$(wildcard configs/experiments/$(o)/*.json)))
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
@@ -55,11 +58,11 @@ render: build
 
 # Long references into reference/ (missing or stale ones only; FORCE=1 re-renders all).
 references: build
-	$(HARNESS) references $(if $(FORCE),--force)
+	$(HARNESS) references $(if $(FORCE),--force) $(ONLY_CONFIGS)
 
 # Every experiment of the profile -> results/<paper>/<figure>.json (references must exist).
 experiments: build
-	$(HARNESS) run
+	$(HARNESS) run $(ONLY_CONFIGS)
 
 tables: deps
 	$(HARNESS) tables
@@ -69,7 +72,7 @@ plots: deps
 
 # References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
 reproduce: build
-	$(HARNESS) reproduce
+	$(HARNESS) reproduce $(ONLY_CONFIGS)
 
 # Small renders of every scene (results/previews/<scene>.png, git-ignored) and a labelled
 # contact sheet, results/previews/contact_sheet.png (committed). A few minutes on 2 cores.

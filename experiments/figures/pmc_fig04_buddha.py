@@ -32,7 +32,8 @@ def write(profile_name: str) -> list[Path]:
     runs = {"initial": ("uniform", 2), "alpha": ("pmc_ip", 6), "pmc_ip": ("pmc_ip", 10),
             "uniform": ("uniform", 10)}
     files = {}
-    renders.check_scene(exp, profile, exp.techniques["pmc_ip"].integrator)  # assets present?
+    pmc_ip = exp.techniques["pmc_ip"]
+    renders.check_scene(exp, profile, pmc_ip.integrator, pmc_ip.overrides)  # assets present?
     for name, (technique, spp) in runs.items():
         files[name] = folder / f"{name}.exr"
         t = exp.techniques[technique]

@@ -39,7 +39,11 @@ def write(profile_name: str) -> list[Path]:
     adaptive = dict(run.exp.techniques["pmc_ip"].integrator, initial_spp=4, iteration_spp=4)
     integrators = {"uniform": run.exp.techniques["uniform"].integrator,
                    "iterations": adaptive, "pooled": dict(adaptive, image="pooled")}
-    renders.check_scene(run.exp, run.profile, adaptive)
+    # Each panel renders with the overrides of the technique its integrator comes from.
+    overrides = {"uniform": run.exp.techniques["uniform"].overrides,
+                 "iterations": run.exp.techniques["pmc_ip"].overrides,
+                 "pooled": run.exp.techniques["pmc_ip"].overrides}
+    renders.check_scene(run.exp, run.profile, adaptive, overrides["iterations"])
     panels = sorted({p for row in ROWS for p in row if p[0] != "reference"})
     seeds = range(run.profile.seeds)
     crops: dict[tuple[str, int], list[np.ndarray]] = {p: [] for p in panels}
@@ -48,7 +52,7 @@ def write(profile_name: str) -> list[Path]:
             exr = run.folder / f"{kind}_{n}_seed{seed}.exr"
             spp = n if kind == "uniform" else 4 * n  # PMC-IP: 4 + 4 (n − 1)
             renders.render(run.exp, run.profile, integrators[kind], exr, seed=seed, spp=spp,
-                           threads=2)
+                           threads=2, overrides=overrides[kind])
             crops[(kind, n)].append(crop(rgb(exr), CROP))
     reference_file = paths.REFERENCE / "pmc" / f"tab1_box.{profile_name}.exr"
     reference = crop(rgb(reference_file), CROP) if reference_file.exists() else None

@@ -23,7 +23,8 @@ TECHNIQUES = [("pmc_hi_27", "PMC-HI"), ("mis_27", "MIS")]
 
 def write(profile_name: str) -> list[Path]:
     run = figure_run(CONFIG, profile_name, "pmc", "fig08")
-    renders.check_scene(run.exp, run.profile, run.exp.techniques["mis_27"].integrator)
+    mis = run.exp.techniques["mis_27"]
+    renders.check_scene(run.exp, run.profile, mis.integrator, mis.overrides)
     images, zooms = {}, {}
     for name, _ in TECHNIQUES:
         zooms[name] = []

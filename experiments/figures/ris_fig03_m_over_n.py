@@ -22,9 +22,11 @@ CONFIG = paths.CONFIGS / "ris" / "fig03_dragon_one_ray.json"
 def write(profile_name: str) -> list[Path]:
     run = figure_run(CONFIG, profile_name, "ris", "fig03_m_over_n")
     exr = run.folder / "ris_optimal.exr"
-    integrator = run.exp.techniques["ris_optimal"].integrator
-    renders.check_scene(run.exp, run.profile, integrator)  # SceneRejected when an asset is absent
-    renders.render(run.exp, run.profile, integrator, exr, seed=0, spp=1, threads=2)
+    technique = run.exp.techniques["ris_optimal"]
+    # SceneRejected when an asset is absent
+    renders.check_scene(run.exp, run.profile, technique.integrator, technique.overrides)
+    renders.render(run.exp, run.profile, technique.integrator, exr, seed=0, spp=1, threads=2,
+                   overrides=technique.overrides)
     (ratio,) = channels(exr, ["ris.mOverN"])
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))

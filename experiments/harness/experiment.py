@@ -12,6 +12,7 @@ technique's runs at that spp are entered again as equal-time records at that bud
 import dataclasses
 import datetime
 import math
+import resource
 import shutil
 import sys
 import tempfile
@@ -195,8 +196,8 @@ def _gain(base_group: list[RunRecord], group: list[RunRecord], metric: str) -> s
 def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
     """Per technique and budget: each metric's mean and 95 % interval over seeds, the spp and
     time reached, and the gain over the baseline (and the also_baseline) at the same budget.
-    Duplicated records (see
-    matched_duplicates) make a fixed-spp technique's entry at a matched time budget."""
+    Duplicated records (see matched_duplicates) make a fixed-spp technique's entry at a
+    matched time budget."""
     groups = group_by_key(sorted(records, key=lambda r: r.seed))
 
     def gains(baseline: str, key: TechniqueBudget, group: list[RunRecord]) -> dict[str, Any]:
@@ -236,12 +237,18 @@ def smallest_rmse(records: list[RunRecord]) -> float:
     return min(r.metrics["rmse"] for r in records)
 
 
+def _children_cpu_seconds() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run(exp: Experiment, profile_name: str, workers: int) -> Path:
     """Runs the whole profile and writes results/<paper>/<figure>.json. Returns its path."""
     profile = exp.profiles[profile_name]
     entry, reference_file = references.lookup(exp, profile)
     started_at = datetime.datetime.now().astimezone().isoformat(timespec="seconds")
     started = time.monotonic()
+    cpu_started = _children_cpu_seconds()
     out_dir = paths.RENDERS / profile.name / exp.id
     shutil.rmtree(out_dir, ignore_errors=True)
     records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
@@ -264,7 +271,8 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "set": exp.overrides,
         "techniques": {t.name: {"label": t.label, "integrator": t.integrator,
                                 "fixed_spp": t.fixed_spp,
-                                **({"samples_at": t.samples_at} if t.samples_at else {})}
+                                **({"samples_at": t.samples_at} if t.samples_at else {}),
+                                **({"set": t.overrides} if t.overrides else {})}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
         **({"also_baseline": exp.also_baseline} if exp.also_baseline else {}),
@@ -288,6 +296,9 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
             "git_dirty": provenance.git_dirty(),
             "started": started_at,
             "wall_seconds": round(time.monotonic() - started, 2),
+            # CPU time of every render and measurement (user + system), the cost to budget
+            # when the profile is split into chunks.
+            "cpu_seconds": round(_children_cpu_seconds() - cpu_started, 1),
             "machine": provenance.machine(),
             "parallel_jobs": parallel_jobs(profile, workers),
             "threads_per_job": profile.threads_per_job,

@@ -99,11 +99,13 @@ def _copy_reference(exp: Experiment, profile: Profile, source: str, entry: dict[
 
 
 def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> None:
-    """Renders the two halves with all cores (resuming from a half a killed run finished),
-    merges them, records the manifest entry; or, with `reuse`, copies a current reference with
-    the same key."""
+    """Renders the two halves with all cores, merges them, records the manifest entry; or, with
+    `reuse`, copies a current reference with the same key, and resumes from a half that a
+    killed run finished. Without `reuse` (forced, e.g. after fixing an integrator) every half is
+    rendered again."""
     manifest = load_manifest()
-    same = _same_key_entry(manifest, key(exp, profile)) if reuse else None
+    wanted = key(exp, profile)
+    same = _same_key_entry(manifest, wanted) if reuse else None
     if same is not None:
         _copy_reference(exp, profile, *same, manifest)
         return
@@ -116,25 +118,33 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
           flush=True)
     started = time.monotonic()
     # Halves live in a directory named by the key, so a render killed after its first half
-    # resumes there (the renderer writes each half atomically: one that exists is complete).
-    wanted = key(exp, profile)
+    # resumes there (the renderer writes each half atomically: one that exists is complete);
+    # each half's commit is stamped beside it and recorded in the manifest.
     scratch = paths.REFERENCE / f".halves-{wanted[:16]}"
+    if not reuse:
+        shutil.rmtree(scratch, ignore_errors=True)
     scratch.mkdir(exist_ok=True)
     halves = [scratch / f"half{i}.exr" for i in range(2)]
-    resumed = [i for i, half in enumerate(halves) if half.exists()]
+    provenances = []
     for half, seed in zip(halves, seeds):
+        stamp = half.with_suffix(".json")
         if half.exists():
             print(f"[references] {paths.relative(half)}: rendered before, reused", flush=True)
+            origin = json.loads(stamp.read_text()) if stamp.exists() else {"git_commit": None}
+            provenances.append({"seed": seed, **origin, "resumed": True})
             continue
+        origin = {"git_commit": provenance.git_commit(), "git_dirty": provenance.git_dirty()}
         renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
                        threads=jobs.default_jobs())
+        provenance.write_json_atomically(stamp, origin)
+        provenances.append({"seed": seed, **origin, "resumed": False})
     merged = json.loads(jobs.run_command(
         [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
     shutil.rmtree(scratch)
     manifest = load_manifest()
     manifest[entry_name(exp, profile)] = {
         "file": str(file_name(exp, profile)),
-        "key": key(exp, profile),
+        "key": wanted,
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
         "integrator": exp.reference_integrator,
@@ -142,7 +152,7 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
         "spp": profile.reference_spp,
         "seeds": seeds,
         "wall_seconds": round(time.monotonic() - started, 2),
-        "resumed_halves": resumed,
+        "halves": provenances,
         "sha256": provenance.sha256_file(out),
         "noise_rmse": merged["noise_rmse"],
         "noise_sigma_over_mu": merged["noise_sigma_over_mu"],

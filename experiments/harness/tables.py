@@ -269,12 +269,15 @@ def _experiment_notes(docs: list[Results]) -> list[str]:
         prov = doc["provenance"]
         matched = "".join(f" Equal time matched to {m.technique} at {m.spp} spp: "
                           f"{m.seconds:g} s." for m in records.read_matched(doc))
+        cpu = f", {prov['cpu_seconds']:.0f} CPU-seconds" if "cpu_seconds" in prov else ""
         lines.append(
             f"- **{figure_of(doc)}** ({doc['profile']} profile, "
             f"{doc['resolution'][0]}×{doc['resolution'][1]}, {len(doc['seeds'])} seeds, "
             f"{prov['parallel_jobs']} parallel renders × {prov['threads_per_job']} thread, "
             f"commit `{(prov['git_commit'] or 'unknown')[:10]}`"
-            f"{' (uncommitted changes)' if prov['git_dirty'] else ''}): {doc['description']} "
+            f"{' (uncommitted changes)' if prov['git_dirty'] else ''}"
+            f"{cpu}"
+            f"): {doc['description']} "
             f"Reference: `{ref['integrator']['type']}`, {ref['spp']} spp, own noise σ/µ "
             f"{ref['noise_sigma_over_mu']:.2g} = {ref['noise_ratio_to_smallest_error']:.2f} of "
             f"the smallest error measured.{matched}")

@@ -7,7 +7,7 @@
 //    Veach & Guibas 1995).
 // Path length: `maxDepth` scattering events, on surfaces or in media (−1: unlimited up to a
 // safety cap), Russian roulette from `rrDepth` on with survival probability
-// min(1, max throughput · Πη²).
+// min(1, max throughput · Πη²), or a fixed `rrSurvival` (pbrt-v1's 0.5) when one is set.
 //
 // Participating media (the volume rendering equation; Pharr, Jakob & Humphreys, PBR 3rd ed.,
 // ch. 15): every segment inside a medium samples a free-flight distance (the MediumDistance

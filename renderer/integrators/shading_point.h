@@ -76,6 +76,10 @@ class ShadingPoint {
         const Frame* f = frame();
         return f ? LightReference(position(), f->n) : LightReference(position());
     }
+    // The density with which sampleLightOf(light, …) yields direction `wi` (infinite lights).
+    float lightDirectionPdf(const Light& light, const Vec3& wi) const {
+        return light.directionPdf(lightReference(), wi);
+    }
     // The shape of the surface's scattering; false in a medium.
     virtual bool scatteringShape(ScatteringShape* out) const = 0;
     // A direction drawn from the vertex's own scattering distribution (BSDF or phase

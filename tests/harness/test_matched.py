@@ -47,6 +47,26 @@ def fixed_records(times4, times16):
     return out
 
 
+class AlsoBaselineTest(unittest.TestCase):
+    def test_every_technique_gets_a_gain_over_the_second_baseline_too(self):
+        doc = valid()
+        doc["techniques"]["third"] = {"integrator": {"type": "path_mis"}}
+        doc["also_baseline"] = "better"
+        exp = load_config(doc)
+        errors = {"base": 1.0, "better": 0.5, "third": 0.25}
+        records = [record(t, "spp", 16, seed, 0.01, e * (1 + 0.01 * seed))
+                   for t, e in errors.items() for seed in SEEDS]
+        summary = index_by_key(experiment.summarise(exp, records))
+        third = summary[TechniqueBudget("third", "spp", 16)]
+        self.assertAlmostEqual(third.gain["sigma_over_mu"].value, 4.0)
+        self.assertAlmostEqual(third.also_gain["sigma_over_mu"].value, 2.0)
+        self.assertEqual(summary[TechniqueBudget("better", "spp", 16)].also_gain, {})
+        self.assertAlmostEqual(
+            summary[TechniqueBudget("base", "spp", 16)].also_gain["sigma_over_mu"].value, 0.5)
+        without = experiment.summarise(load_config(valid()), records[:10])
+        self.assertTrue(all(s.also_gain is None for s in without))
+
+
 class MatchedBudgetsTest(unittest.TestCase):
     def test_fixed_spp_techniques_get_no_time_limit(self):
         exp = fixed_config()

@@ -109,7 +109,7 @@ class ResumedHalves(unittest.TestCase):
 
     def render_reference(self):
         with contextlib.redirect_stdout(io.StringIO()):
-            references.render_reference(self.exp, self.profile, reuse=False)
+            references.render_reference(self.exp, self.profile)
 
     def test_a_killed_render_resumes_from_its_finished_half(self):
         first, second = (references.renders.REFERENCE_SEED_BASE + i for i in range(2))
@@ -122,8 +122,19 @@ class ResumedHalves(unittest.TestCase):
         self.assertEqual(self.rendered_seeds, [first, second])
         entry = json.loads(paths.MANIFEST.read_text())[references.entry_name(self.exp,
                                                                             self.profile)]
-        self.assertEqual(entry["resumed_halves"], [0])
+        self.assertEqual([h["resumed"] for h in entry["halves"]], [True, False])
+        self.assertEqual([h["seed"] for h in entry["halves"]], [first, second])
         self.assertEqual(list(paths.REFERENCE.glob(".halves-*")), [])
+
+    def test_a_forced_render_does_not_resume(self):
+        first, second = (references.renders.REFERENCE_SEED_BASE + i for i in range(2))
+        self.kill_at_seed = second
+        with self.assertRaises(KeyboardInterrupt):
+            self.render_reference()
+        self.kill_at_seed = None
+        with contextlib.redirect_stdout(io.StringIO()):
+            references.render_reference(self.exp, self.profile, reuse=False)
+        self.assertEqual(self.rendered_seeds, [first, first, second])
 
 
 if __name__ == "__main__":

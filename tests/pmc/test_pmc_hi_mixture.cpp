@@ -52,7 +52,7 @@ class ScenePoint final : public ShadingPoint {
                      const Light** light) override {
         float pmf;
         *light = scene_.lightSelector().select(uniform(kSeed, draws_++), Vec3(0.0f), &pmf);
-        if (!*light || !(*light)->sample(Vec3(0.0f), uniform2(kSeed, draws_++), 0.0f, ls))
+        if (!*light || !(*light)->sample(lightReference(), uniform2(kSeed, draws_++), 0.0f, ls))
             return false;
         *pdf = pmf * ls->pdf;
         return true;
@@ -110,14 +110,14 @@ class ScenePoint final : public ShadingPoint {
         return le;
     }
     bool sampleLightOf(const Light& light, const Vec2& u, LightSample* ls) const override {
-        return light.sample(Vec3(0.0f), u, 0.0f, ls);
+        return light.sample(lightReference(), u, 0.0f, ls);
     }
     float infiniteLightPdf(const Vec3& wi, Rgb* radiance) const override {
         float pdf = 0;
         *radiance = Rgb(0.0f);
         for (const Light* light : scene_.infiniteLights()) {
             pdf += scene_.lightSelector().pmf(*light, Vec3(0.0f)) *
-                   light->directionPdf(Vec3(0.0f), wi);
+                   light->directionPdf(lightReference(), wi);
             *radiance += light->escapedRadiance(wi);
         }
         return pdf;

@@ -1,5 +1,6 @@
 #include "scene/lights/env_sampling.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "math/frame.h"
@@ -52,7 +53,9 @@ bool invertEnvDirection(EnvSampling how, const LightReference& reference, const 
     // squareToCosineHemisphere projects a uniform disc point up: the disc point is (x, y).
     const Vec2 square = uniformDiskToSquare(Vec2(local.x, local.y));
     const bool below = local.z < 0;
-    *u = Vec2(below ? 0.5f + 0.5f * square.x : 0.5f * square.x, square.y);
+    // 0.5 + 0.5·x rounds up to 1 for x just below 1: keep u in [0, 1).
+    *u = Vec2(below ? std::min(0.5f + 0.5f * square.x, kOneMinusEpsilon) : 0.5f * square.x,
+              square.y);
     return true;
 }
 

@@ -63,9 +63,11 @@ EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout
             for (int c = 0; c < 3; ++c)
                 integral[c] += double(p[c]) * jacobian * texelArea;
         }
-    distribution_ = Distribution2D(weights, width, height);
     radianceIntegral_ = Rgb(float(integral[0]), float(integral[1]), float(integral[2]));
-    if (sampling_ == EnvSampling::Luminance) buildProxy(weights, jacobians);
+    // The map's own sampling tables, only when light samples follow the map.
+    if (sampling_ != EnvSampling::Luminance) return;
+    distribution_ = Distribution2D(weights, width, height);
+    buildProxy(weights, jacobians);
 }
 
 void EnvironmentMap::buildProxy(const std::vector<float>& weights,

@@ -190,8 +190,8 @@ float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
     if (d.escaped)
         for (const Light* light : lights_)
             if (light->isInfinite())
-                k += kernel.alpha[1 + light->index()] *
-                     light->directionPdf(point.lightReference(), d.direction);
+                k +=
+                    kernel.alpha[1 + light->index()] * point.lightDirectionPdf(*light, d.direction);
     return static_cast<float>(k);
 }
 
