@@ -64,6 +64,9 @@ TEST(Metrics, MseRmseSigmaOverMuAndRelmse) {
     expectClose(c.rgb.rmse, 0.6614378);
     EXPECT_DOUBLE_EQ(c.rgb.referenceMean, 2.0);
     expectClose(*c.rgb.sigmaOverMu, 0.3307189);
+    // Image mean (4 + 7 + 6 + 6.5)/12 = 23.5/12: relative bias 23.5/24 − 1 = −1/48.
+    expectClose(c.rgb.mean, 23.5 / 12);
+    expectClose(*c.rgb.relativeBias, -1.0 / 48);
     // relMSE: (1/1.01 + 4/9.01 + 0.25/4.01)/12 = (0.9900990 + 0.4439512 + 0.0623441)/12.
     expectClose(c.rgb.relmse, 0.1246995);
     EXPECT_EQ(c.width, 2);

@@ -57,6 +57,7 @@ TEST(MetricsCli, CompareJsonHasEveryMetric) {
     EXPECT_NEAR(j["rmse"].get<double>(), 0.6614378, 1e-6);
     EXPECT_NEAR(j["sigma_over_mu"].get<double>(), 0.3307189, 1e-6);
     EXPECT_DOUBLE_EQ(j["reference_mean"].get<double>(), 2);
+    EXPECT_NEAR(j["relative_bias"].get<double>(), -1.0 / 48, 1e-12);
     EXPECT_NEAR(j["relmse"].get<double>(), 0.1246995, 1e-6);
     EXPECT_EQ(j["relmse_reject_fraction"].get<double>(), 0);
     EXPECT_NEAR(j["tvi_err"].get<double>(), 23.74546, 1e-4);

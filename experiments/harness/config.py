@@ -32,7 +32,11 @@ METRICS = {
     "tvi_err": False,
     "p_eff": True,
     "mse_eff": True,
+    "relative_bias": False,
 }
+# Signed diagnostics: reported with their interval over seeds, never as a gain or a threshold
+# (image mean / reference mean − 1: a biased technique's bias, e.g. TAIS's contribution filter).
+SIGNED_METRICS = {"relative_bias"}
 # Efficiencies are 1/(T·error): the error metric each one is built on.
 EFFICIENCY_OF = {"p_eff": "tvi_err", "mse_eff": "mse"}
 PROFILES = ("quick", "full")
@@ -252,6 +256,9 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
         yield from _profile_disagreements(name, doc["profiles"][name])
     if doc["baseline"] not in doc["techniques"]:
         yield "/baseline", "must name one of the techniques"
+    if doc["metrics"][0] in SIGNED_METRICS:
+        yield "/metrics/0", (f"{doc['metrics'][0]} is signed: the primary metric must be an error "
+                             "or an efficiency (list it after one)")
     if "also_baseline" in doc and doc["also_baseline"] not in doc["techniques"]:
         yield "/also_baseline", "must name one of the techniques"
     if doc.get("also_baseline") == doc["baseline"]:
@@ -337,7 +344,7 @@ def _paper_disagreements(doc: dict[str, Any], pointer: str,
 
 def _threshold_disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
     thresholds, primary = doc["thresholds"], doc["metrics"][0]
-    if METRICS[primary] or primary in EFFICIENCY_OF:
+    if METRICS[primary] or primary in EFFICIENCY_OF or primary in SIGNED_METRICS:
         yield "/thresholds", (f"thresholds need an error as the primary metric, not {primary}: "
                               "an efficiency depends on the machine's speed, so a check on it "
                               "could flake")

@@ -204,7 +204,8 @@ def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
         base_group = groups.get(TechniqueBudget(baseline, key.kind, key.budget))
         if key.technique == baseline or not base_group:
             return {}
-        return {m: _gain(base_group, group, m) for m in exp.metrics}
+        return {m: _gain(base_group, group, m) for m in exp.metrics
+                if m not in config.SIGNED_METRICS}
 
     summary = []
     for key, group in groups.items():

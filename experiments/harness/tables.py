@@ -15,7 +15,8 @@ from .errors import ConfigError
 from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget
 
 METRIC_NAMES = {"sigma_over_mu": "σ/µ", "rmse": "RMSE", "mse": "MSE", "relmse": "relMSE",
-                "tvi_err": "Err (tvi)", "p_eff": "P-Eff", "mse_eff": "1/(T·MSE)"}
+                "tvi_err": "Err (tvi)", "p_eff": "P-Eff", "mse_eff": "1/(T·MSE)",
+                "relative_bias": "bias (mean / ref. − 1)"}
 
 
 def load_results(profile_name: str) -> dict[str, list[Results]]:

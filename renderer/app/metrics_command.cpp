@@ -65,9 +65,14 @@ void addLine(std::string& out, const std::string& label, const std::string& valu
 // ---- compare ----
 
 Json statsJson(const ErrorStats& s) {
-    return {
-        {"rmse", s.rmse},     {"mse", s.mse},        {"sigma_over_mu", numberOrNull(s.sigmaOverMu)},
-        {"relmse", s.relmse}, {"tvi_err", s.tviErr}, {"reference_mean", s.referenceMean}};
+    return {{"rmse", s.rmse},
+            {"mse", s.mse},
+            {"sigma_over_mu", numberOrNull(s.sigmaOverMu)},
+            {"relmse", s.relmse},
+            {"tvi_err", s.tviErr},
+            {"reference_mean", s.referenceMean},
+            {"mean", s.mean},
+            {"relative_bias", numberOrNull(s.relativeBias)}};
 }
 
 // IMAGE's render time: --time, else its renderer.renderTime when that is positive.
@@ -99,7 +104,9 @@ Json compareJson(const CompareCommandOptions& o, const ExrImage& image, const Co
               {"mse", c.rgb.mse},
               {"rmse", c.rgb.rmse},
               {"reference_mean", c.rgb.referenceMean},
+              {"mean", c.rgb.mean},
               {"sigma_over_mu", *c.rgb.sigmaOverMu},
+              {"relative_bias", *c.rgb.relativeBias},
               {"relmse", c.rgb.relmse},
               {"tvi_err", c.rgb.tviErr},
               {"luminance", statsJson(c.luminance)}};

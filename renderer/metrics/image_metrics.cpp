@@ -30,13 +30,14 @@ double meanWithoutLargest(std::vector<double> values, double fraction) {
 ErrorStats errorStats(const std::vector<const std::vector<double>*>& x,
                       const std::vector<const std::vector<double>*>& r, double rejectFraction) {
     const size_t pixels = r[0]->size();
-    double squared = 0, referenceSum = 0;
+    double squared = 0, referenceSum = 0, imageSum = 0;
     std::vector<double> relmsePerPixel(pixels, 0.0);
     for (size_t c = 0; c < r.size(); ++c)
         for (size_t i = 0; i < pixels; ++i) {
             const double ref = (*r[c])[i], d = (*x[c])[i] - ref;
             squared += d * d;
             referenceSum += ref;
+            imageSum += (*x[c])[i];
             relmsePerPixel[i] += d * d / (ref * ref + 0.01) / double(r.size());
         }
     ErrorStats s;
@@ -44,7 +45,11 @@ ErrorStats errorStats(const std::vector<const std::vector<double>*>& x,
     s.mse = squared / values;
     s.rmse = std::sqrt(s.mse);
     s.referenceMean = referenceSum / values;
-    if (s.referenceMean > 0) s.sigmaOverMu = s.rmse / s.referenceMean;
+    s.mean = imageSum / values;
+    if (s.referenceMean > 0) {
+        s.sigmaOverMu = s.rmse / s.referenceMean;
+        s.relativeBias = s.mean / s.referenceMean - 1;
+    }
     s.relmse = meanWithoutLargest(std::move(relmsePerPixel), rejectFraction);
     return s;
 }

@@ -20,7 +20,11 @@ struct CompareOptions {
 struct ErrorStats {
     double mse = 0, rmse = 0;
     double referenceMean = 0;
+    double mean = 0;                    // of the image, over the same values
     std::optional<double> sigmaOverMu;  // rmse / referenceMean; none unless that mean is > 0
+    // mean / referenceMean − 1: the image's bias, when averaged over independent renders
+    // (a biased technique's, e.g. TAIS's contribution filter); none unless referenceMean > 0.
+    std::optional<double> relativeBias;
     // Mean of (x−r)²/(r²+0.01) over the pixels that remain after the rejection, each pixel
     // contributing the mean over its values.
     double relmse = 0;

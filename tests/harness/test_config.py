@@ -121,6 +121,8 @@ class BadConfigTest(unittest.TestCase):
             (lambda d: d.update(also_baseline="nope"), "/also_baseline",
              "one of the techniques"),
             (lambda d: d.update(also_baseline="base"), "/also_baseline", "differ"),
+            (lambda d: d.update(metrics=["relative_bias", "sigma_over_mu"]), "/metrics/0",
+             "signed"),
             (lambda d: d.update(metrics=["sigma_over_mu", "psnr"]), "/metrics/1",
              "unknown metric"),
             (lambda d: d.update(scene="configs/scenes/missing.json"), "/scene", "not found"),

@@ -67,6 +67,22 @@ class AlsoBaselineTest(unittest.TestCase):
         self.assertTrue(all(s.also_gain is None for s in without))
 
 
+class SignedMetricTest(unittest.TestCase):
+    def test_a_bias_is_summarised_over_seeds_without_a_gain(self):
+        doc = valid()
+        doc["metrics"] = ["sigma_over_mu", "relative_bias"]
+        exp = load_config(doc)
+        records = [dataclasses.replace(r, metrics={**r.metrics, "relative_bias": bias})
+                   for t, bias in (("base", 0.0), ("better", -0.02))
+                   for r in [record(t, "spp", 16, seed, 0.01, 0.5 + 0.01 * seed)
+                             for seed in SEEDS]]
+        summary = index_by_key(experiment.summarise(exp, records))
+        better = summary[TechniqueBudget("better", "spp", 16)]
+        self.assertAlmostEqual(better.metrics["relative_bias"].mean, -0.02)
+        self.assertIn("sigma_over_mu", better.gain)
+        self.assertNotIn("relative_bias", better.gain)
+
+
 class MatchedBudgetsTest(unittest.TestCase):
     def test_fixed_spp_techniques_get_no_time_limit(self):
         exp = fixed_config()
