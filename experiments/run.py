@@ -15,6 +15,7 @@ CONFIG defaults to every configs/experiments/<paper>/<figure>.json. --profile qu
 (default quick, or $PROFILE). Exit status: 0 done, 1 a step failed (or a threshold), 2 bad
 input (one message naming the JSON pointer)."""
 import argparse
+import functools
 import json
 import os
 import sys
@@ -56,11 +57,13 @@ def validate_experiment(exp: Experiment) -> None:
     """The scene documents of every technique and of the reference, in both profiles. An
     absent asset that may be skipped (see SceneRejected.skippable) is raised as it is."""
     for profile in exp.profiles.values():
-        for integrator, overrides in [(t.integrator, t.overrides)
-                                      for t in exp.techniques.values()] + [
-                (exp.reference_integrator, {})]:
+        checks = [functools.partial(renders.check_technique, exp, profile, t)
+                  for t in exp.techniques.values()]
+        checks.append(functools.partial(renders.check_scene, exp, profile,
+                                        exp.reference_integrator))
+        for check in checks:
             try:
-                renders.check_scene(exp, profile, integrator, overrides)
+                check()
             except SceneRejected as e:
                 if e.skippable:
                     raise

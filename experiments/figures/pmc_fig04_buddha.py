@@ -32,13 +32,11 @@ def write(profile_name: str) -> list[Path]:
     runs = {"initial": ("uniform", 2), "alpha": ("pmc_ip", 6), "pmc_ip": ("pmc_ip", 10),
             "uniform": ("uniform", 10)}
     files = {}
-    pmc_ip = exp.techniques["pmc_ip"]
-    renders.check_scene(exp, profile, pmc_ip.integrator, pmc_ip.overrides)  # assets present?
+    renders.check_technique(exp, profile, exp.techniques["pmc_ip"])  # assets present?
     for name, (technique, spp) in runs.items():
         files[name] = folder / f"{name}.exr"
-        t = exp.techniques[technique]
-        renders.render(exp, profile, t.integrator, files[name], seed=0, spp=spp, threads=2,
-                       overrides=t.overrides)
+        renders.render_technique(exp, profile, exp.techniques[technique], files[name], seed=0,
+                                 spp=spp, threads=2)
     scale = float(np.percentile(rgb(files["uniform"]), 99))
 
     def display(exr: Path) -> np.ndarray:

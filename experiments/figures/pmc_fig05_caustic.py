@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness import paths, plots, renders  # noqa: E402
+from harness import paths, plots, references, renders  # noqa: E402
 
 from .images import crop, figure_run, rgb, shown  # noqa: E402
 
@@ -36,14 +36,12 @@ TITLES = {"uniform": "path tracing, {} spp", "iterations": "PMC-IP, {} iteration
 
 def write(profile_name: str) -> list[Path]:
     run = figure_run(CONFIG, profile_name, "pmc", "fig05")
-    adaptive = dict(run.exp.techniques["pmc_ip"].integrator, initial_spp=4, iteration_spp=4)
-    integrators = {"uniform": run.exp.techniques["uniform"].integrator,
-                   "iterations": adaptive, "pooled": dict(adaptive, image="pooled")}
-    # Each panel renders with the overrides of the technique its integrator comes from.
-    overrides = {"uniform": run.exp.techniques["uniform"].overrides,
-                 "iterations": run.exp.techniques["pmc_ip"].overrides,
-                 "pooled": run.exp.techniques["pmc_ip"].overrides}
-    renders.check_scene(run.exp, run.profile, adaptive, overrides["iterations"])
+    uniform, pmc_ip = run.exp.techniques["uniform"], run.exp.techniques["pmc_ip"]
+    adaptive = dict(pmc_ip.integrator, initial_spp=4, iteration_spp=4)
+    # Each panel: the technique it renders, with that integrator (a variant of its own).
+    panels_of = {"uniform": (uniform, uniform.integrator), "iterations": (pmc_ip, adaptive),
+                 "pooled": (pmc_ip, dict(adaptive, image="pooled"))}
+    renders.check_technique(run.exp, run.profile, pmc_ip, adaptive)
     panels = sorted({p for row in ROWS for p in row if p[0] != "reference"})
     seeds = range(run.profile.seeds)
     crops: dict[tuple[str, int], list[np.ndarray]] = {p: [] for p in panels}
@@ -51,11 +49,12 @@ def write(profile_name: str) -> list[Path]:
         for kind, n in panels:
             exr = run.folder / f"{kind}_{n}_seed{seed}.exr"
             spp = n if kind == "uniform" else 4 * n  # PMC-IP: 4 + 4 (n − 1)
-            renders.render(run.exp, run.profile, integrators[kind], exr, seed=seed, spp=spp,
-                           threads=2, overrides=overrides[kind])
+            technique, integrator = panels_of[kind]
+            renders.render_technique(run.exp, run.profile, technique, exr, seed=seed, spp=spp,
+                                     threads=2, integrator=integrator)
             crops[(kind, n)].append(crop(rgb(exr), CROP))
-    reference_file = paths.REFERENCE / "pmc" / f"tab1_box.{profile_name}.exr"
-    reference = crop(rgb(reference_file), CROP) if reference_file.exists() else None
+    reference_file = references.current_file(run.exp, run.profile)
+    reference = crop(rgb(reference_file), CROP) if reference_file else None
     scale = float(np.percentile(reference if reference is not None
                                 else crops[("uniform", 256)][0], 99))
 

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness import paths, plots, renders  # noqa: E402
+from harness import paths, plots, references, renders  # noqa: E402
 
 from .images import crop, figure_run, rgb, shown  # noqa: E402
 
@@ -23,21 +23,19 @@ TECHNIQUES = [("pmc_hi_27", "PMC-HI"), ("mis_27", "MIS")]
 
 def write(profile_name: str) -> list[Path]:
     run = figure_run(CONFIG, profile_name, "pmc", "fig08")
-    mis = run.exp.techniques["mis_27"]
-    renders.check_scene(run.exp, run.profile, mis.integrator, mis.overrides)
+    renders.check_technique(run.exp, run.profile, run.exp.techniques["mis_27"])
     images, zooms = {}, {}
     for name, _ in TECHNIQUES:
         zooms[name] = []
         for seed in range(run.profile.seeds):
             exr = run.folder / f"{name}_seed{seed}.exr"
-            technique = run.exp.techniques[name]
-            renders.render(run.exp, run.profile, technique.integrator, exr, seed=seed,
-                           spp=run.profile.spp[0], threads=2, overrides=technique.overrides)
+            renders.render_technique(run.exp, run.profile, run.exp.techniques[name], exr,
+                                     seed=seed, spp=run.profile.spp[0], threads=2)
             pixels = rgb(exr)
             images.setdefault(name, pixels)
             zooms[name].append(crop(pixels, CROP))
-    reference_file = paths.REFERENCE / "pmc" / f"tab2_plant.{profile_name}.exr"
-    full_reference = rgb(reference_file) if reference_file.exists() else None
+    reference_file = references.current_file(run.exp, run.profile)
+    full_reference = rgb(reference_file) if reference_file else None
     reference = crop(full_reference, CROP) if full_reference is not None else None
     scale = float(np.percentile(images["mis_27"], 99))
 

@@ -24,9 +24,8 @@ def write(profile_name: str) -> list[Path]:
     exr = run.folder / "ris_optimal.exr"
     technique = run.exp.techniques["ris_optimal"]
     # SceneRejected when an asset is absent
-    renders.check_scene(run.exp, run.profile, technique.integrator, technique.overrides)
-    renders.render(run.exp, run.profile, technique.integrator, exr, seed=0, spp=1, threads=2,
-                   overrides=technique.overrides)
+    renders.check_technique(run.exp, run.profile, technique)
+    renders.render_technique(run.exp, run.profile, technique, exr, seed=0, spp=1, threads=2)
     (ratio,) = channels(exr, ["ris.mOverN"])
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))

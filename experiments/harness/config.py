@@ -344,7 +344,7 @@ def _paper_disagreements(doc: dict[str, Any], pointer: str,
 
 def _threshold_disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
     thresholds, primary = doc["thresholds"], doc["metrics"][0]
-    if METRICS[primary] or primary in EFFICIENCY_OF or primary in SIGNED_METRICS:
+    if METRICS[primary] or primary in EFFICIENCY_OF:
         yield "/thresholds", (f"thresholds need an error as the primary metric, not {primary}: "
                               "an efficiency depends on the machine's speed, so a check on it "
                               "could flake")

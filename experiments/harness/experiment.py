@@ -133,12 +133,11 @@ def execute(exp: Experiment, profile: Profile, runs: list[Run], out_dir: Path,
             technique = exp.techniques[run.technique]
             if run.kind == SPP:
                 integrator, spp = technique.integrator_for(int(run.budget))
-                renders.render(exp, profile, integrator, out, run.seed, spp=spp,
-                               threads=profile.threads_per_job, overrides=technique.overrides)
+                renders.render_technique(exp, profile, technique, out, run.seed, spp=spp,
+                                         threads=profile.threads_per_job, integrator=integrator)
             else:
-                renders.render(exp, profile, technique.integrator, out, run.seed,
-                               seconds=run.budget, threads=profile.threads_per_job,
-                               overrides=technique.overrides)
+                renders.render_technique(exp, profile, technique, out, run.seed,
+                                         seconds=run.budget, threads=profile.threads_per_job)
             m = renders.compare(out, reference_file, exp.relmse_reject)
             # A sweep of samples per primary ray counts its samples, not its one pixel sample.
             spp = m.spp * int(run.budget) if technique.samples_at else m.spp

@@ -62,6 +62,12 @@ def status(exp: Experiment, profile: Profile, manifest: Manifest | None = None) 
     return "ok"
 
 
+def current_file(exp: Experiment, profile: Profile) -> Path | None:
+    """The current reference's file; None when it is missing or stale (figures that show it
+    leave it out then)."""
+    return paths.REFERENCE / file_name(exp, profile) if status(exp, profile) == "ok" else None
+
+
 def lookup(exp: Experiment, profile: Profile) -> tuple[dict[str, Any], Path]:
     """The manifest entry of a current reference; refuses a missing or stale one."""
     manifest = load_manifest()

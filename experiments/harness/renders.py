@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from . import config, jobs, paths
-from .config import Experiment, Integrator, Profile
+from .config import Experiment, Integrator, Profile, Technique
 from .errors import HarnessFailure, SceneRejected
 
 # Reference halves use seeds far from the experiments' (0, 1, 2, ...), so a reference is
@@ -61,16 +61,37 @@ def check(args: Sequence[object]) -> SceneCheck:
                       answer["features"], answer["sceneSha256"])
 
 
-def check_scene(exp: Experiment, profile: Profile, integrator: Integrator,
-                overrides: dict[str, Any] | None = None) -> SceneCheck:
-    """Checks the scene document a render of `integrator` at the profile's size would use."""
-    return check(scene_args(exp, profile, integrator, overrides))
+def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:
+    """Checks the scene document a render of `integrator` (a reference's, or one of a figure's
+    own) at the profile's size would use. A technique's: check_technique."""
+    return check(scene_args(exp, profile, integrator))
+
+
+def check_technique(exp: Experiment, profile: Profile, technique: Technique,
+                    integrator: Integrator | None = None) -> SceneCheck:
+    """check_scene for `technique`: its integrator, or a variant of it, with its overrides."""
+    return check(scene_args(exp, profile, integrator or technique.integrator,
+                            technique.overrides))
 
 
 def render(exp: Experiment, profile: Profile, integrator: Integrator, out: Path, seed: int,
-           spp: int | None = None, seconds: float | None = None, threads: int = 1,
-           overrides: dict[str, Any] | None = None) -> None:
-    args = [paths.renderer_binary(), "render", *scene_args(exp, profile, integrator, overrides),
+           spp: int | None = None, seconds: float | None = None, threads: int = 1) -> None:
+    """Renders `integrator` (a reference's, or one of a figure's own); a technique's:
+    render_technique."""
+    _render(scene_args(exp, profile, integrator), out, seed, spp, seconds, threads)
+
+
+def render_technique(exp: Experiment, profile: Profile, technique: Technique, out: Path,
+                     seed: int, spp: int | None = None, seconds: float | None = None,
+                     threads: int = 1, integrator: Integrator | None = None) -> None:
+    """Renders `technique`: its integrator, or a variant of it, with its overrides."""
+    _render(scene_args(exp, profile, integrator or technique.integrator, technique.overrides),
+            out, seed, spp, seconds, threads)
+
+
+def _render(scene: list[object], out: Path, seed: int, spp: int | None, seconds: float | None,
+            threads: int) -> None:
+    args = [paths.renderer_binary(), "render", *scene,
             "--seed", seed, "--threads", threads, "--no-preview", "--out", out]
     args += ["--time-limit", seconds] if seconds is not None else ["--spp", spp]
     jobs.run_command(args)

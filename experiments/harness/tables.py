@@ -162,12 +162,17 @@ def _has_also_baseline(docs: list[Results]) -> bool:
 ALSO_HEAD = " gain over 2nd baseline (95 %) |"
 
 
+def _separator(head: str) -> str:
+    """The Markdown row under `head`: one `---` per cell."""
+    return "|" + "---|" * (head.count("|") - 1)
+
+
 def _main_table(docs: list[Results]) -> list[str]:
     also = _has_also_baseline(docs)
     head = ("| figure | technique | budget | spp | time (s) | metric | ours (mean ± 95 %) | paper "
             "| gain over baseline (95 %) |" + (ALSO_HEAD if also else "") +
             " paper's gain | verdict |")
-    lines = [head, "|" + "---|" * (12 if also else 11)]
+    lines = [head, _separator(head)]
     for doc in docs:
         for row in _rows(doc):
             v = _row_values(doc, row)
@@ -179,9 +184,9 @@ def _main_table(docs: list[Results]) -> list[str]:
 
 def _secondary_table(docs: list[Results]) -> list[str]:
     also = _has_also_baseline(docs)
-    lines = ["| figure | technique | budget | metric | ours (mean ± 95 %) | paper | gain over "
-             "baseline (95 %) |" + (ALSO_HEAD if also else "") + " paper's gain | verdict |",
-             "|" + "---|" * (10 if also else 9)]
+    head = ("| figure | technique | budget | metric | ours (mean ± 95 %) | paper | gain over "
+            "baseline (95 %) |" + (ALSO_HEAD if also else "") + " paper's gain | verdict |")
+    lines = [head, _separator(head)]
     for doc in docs:
         for row in _rows(doc):
             for metric in doc["metrics"][1:]:

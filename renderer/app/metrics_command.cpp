@@ -95,21 +95,16 @@ void addEfficiencies(Json& j, double time, const ErrorStats& rgb) {
 }
 
 Json compareJson(const CompareCommandOptions& o, const ExrImage& image, const Comparison& c) {
-    Json j = {{"image", o.image},
+    // Over RGB at the top level (compareImages refuses a reference without a positive mean, so
+    // σ/µ and the bias are numbers there), per channel and on luminance below.
+    Json j = statsJson(c.rgb);
+    j.update({{"image", o.image},
               {"reference", o.reference},
               {"width", c.width},
               {"height", c.height},
               {"cd_per_unit", o.cdPerUnit},
               {"relmse_reject_fraction", o.relmseReject},
-              {"mse", c.rgb.mse},
-              {"rmse", c.rgb.rmse},
-              {"reference_mean", c.rgb.referenceMean},
-              {"mean", c.rgb.mean},
-              {"sigma_over_mu", *c.rgb.sigmaOverMu},
-              {"relative_bias", *c.rgb.relativeBias},
-              {"relmse", c.rgb.relmse},
-              {"tvi_err", c.rgb.tviErr},
-              {"luminance", statsJson(c.luminance)}};
+              {"luminance", statsJson(c.luminance)}});
     for (size_t k = 0; k < 3; ++k)
         j["channels"][kRgbChannels[k]] = statsJson(c.channels[k]);
     if (const auto it = image.attributes.find("renderer.spp"); it != image.attributes.end())

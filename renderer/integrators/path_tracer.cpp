@@ -11,10 +11,15 @@ std::unique_ptr<PathTracer> PathTracer::withoutNextEventEstimation(const PathSet
         new PathTracer("path", settings, std::make_unique<ScatteringOnlyEstimator>()));
 }
 
+void PathSettings::addTo(nlohmann::json* parameters) const {
+    (*parameters)["max_depth"] = maxDepth;
+    (*parameters)["rr_depth"] = rrDepth;
+    if (rrSurvival > 0) (*parameters)["rr_survival"] = rrSurvival;
+}
+
 nlohmann::json PathTracer::parameters() const {
-    nlohmann::json p = {
-        {"type", name()}, {"max_depth", settings_.maxDepth}, {"rr_depth", settings_.rrDepth}};
-    if (settings_.rrSurvival > 0) p["rr_survival"] = settings_.rrSurvival;
+    nlohmann::json p = {{"type", name()}};
+    settings_.addTo(&p);
     if (nee_->lightSamples() > 0) p["estimator"] = nee_->parameters();
     return p;
 }

@@ -36,6 +36,9 @@ struct PathSettings {
     // Russian roulette's survival probability: 0 for min(1, max throughput component × η²),
     // else this fixed value (pbrt-v1's path integrator: 0.5).
     float rrSurvival = 0;
+
+    // Adds max_depth, rr_depth (and rr_survival when fixed) to an integrator's parameters.
+    void addTo(nlohmann::json* parameters) const;
 };
 
 class PathTracer final : public SampleIntegrator {

@@ -147,7 +147,12 @@ class SurfaceVertex final : public ShadingPoint {
             if (source) *source = EmissionSource{.withSelection = source->withSelection};
             if (!scene.intersect(hit_.spawn(wi), &lightHit)) {
                 if (source) source->escaped = true;
-                return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
+                if (!source || !source->withSelection)
+                    return escapedRadiance(scene, wi, [](const Light&) { return 1.0f; });
+                // The infinite lights' radiance and density in one pass over them.
+                Rgb radiance;
+                source->selectedLightPdf = infiniteLightPdf(wi, &radiance);
+                return radiance;
             }
             const AreaLight* light = lightHit.shape->areaLight();
             if (!light) return Rgb(0.0f);

@@ -28,7 +28,8 @@ struct ScatteringShape {
 // Where the emission along a direction comes from (ShadingPoint::incidentEmission): the area
 // light the ray hit and the solid-angle density with which that light's own sampler picks the
 // point (Light::pdf), and, when `withSelection` is asked for, with which sampleLight() picks it
-// (the light's selection included); or that the ray escaped to the infinite lights; or neither.
+// (the light's selection included); or that the ray escaped to the infinite lights (then, with
+// `withSelection`, selectedLightPdf is infiniteLightPdf() of the direction); or neither.
 struct EmissionSource {
     bool withSelection = false;  // in: also fill selectedLightPdf
     const Light* areaLight = nullptr;

@@ -94,8 +94,8 @@ class ScenePoint final : public ShadingPoint {
         Rgb le(0.0f);
         if (!scene_.intersect(Ray{Vec3(0.0f), wi}, &hit)) {
             found.escaped = true;
-            for (const Light* light : scene_.infiniteLights())
-                le += light->escapedRadiance(wi);
+            const float pdf = infiniteLightPdf(wi, &le);
+            if (source && source->withSelection) found.selectedLightPdf = pdf;
         } else if (const AreaLight* light = hit.shape->areaLight()) {
             found.areaLight = light;
             found.areaLightPdf = light->pdf(Vec3(0.0f), hit);

@@ -53,7 +53,9 @@ struct PmcHiEstimator::Draw {
     Rgb f, le, tr;
     int areaLight = -1;  // the area light the sample lies on
     float areaLightPdf = 0;
-    float selectedLightPdf = 0;  // the light's selection × areaLightPdf (one for all lights)
+    // One for all lights: the light's selection × areaLightPdf, or for a direction that escapes
+    // the summed density of the infinite lights (ShadingPoint::infiniteLightPdf).
+    float selectedLightPdf = 0;
     bool escaped = false;        // a direction to the infinite lights
     float weight = 0;            // luminance of f·Le·V / K, for the adaptation
 };
@@ -86,6 +88,7 @@ PixelRecordLayout PmcHiEstimator::pixelRecords() const {
 
 void PmcHiEstimator::prepare(const Scene& scene, const std::string& pointer) {
     lights_.assign(scene.lights().begin(), scene.lights().end());
+    infiniteLights_.assign(scene.infiniteLights().begin(), scene.infiniteLights().end());
     for (const Light* light : lights_)
         if (light->isDelta())
             throw ConfigError(pointer, "pmc_hi mixes densities over directions, which light " +
@@ -125,15 +128,8 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
     }
     d->f = point.scattering(d->direction);
     if (d->f.isBlack()) return false;
-    EmissionSource source{.withSelection = oneForAllLights_};
-    d->le = point.incidentEmission(d->direction, &source);
+    d->le = findEmission(point, d);
     d->tr = Rgb(1.0f);
-    d->escaped = source.escaped;
-    if (source.areaLight) {
-        d->areaLight = source.areaLight->index();
-        d->areaLightPdf = source.areaLightPdf;
-        d->selectedLightPdf = source.selectedLightPdf;
-    }
     d->found = !d->le.isBlack();
     return d->found;
 }
@@ -158,8 +154,11 @@ bool PmcHiEstimator::drawLightPoint(ShadingPoint& point, uint32_t component, uin
     d->f = point.scattering(ls.direction);
     if (light->isInfinite()) {
         d->escaped = true;
-        for (const Light* other : lights_)
-            if (other->isInfinite()) d->le += other->escapedRadiance(ls.direction);
+        if (oneForAllLights_)  // every infinite light's radiance and density, in one pass
+            d->selectedLightPdf = point.infiniteLightPdf(ls.direction, &d->le);
+        else
+            for (const Light* other : infiniteLights_)
+                d->le += other->escapedRadiance(ls.direction);
     } else {
         d->areaLight = light->index();
         d->areaLightPdf = ls.pdf;
@@ -172,6 +171,20 @@ bool PmcHiEstimator::drawLightPoint(ShadingPoint& point, uint32_t component, uin
     return d->found;
 }
 
+// The emission along d->direction, and where it comes from (the light and the densities
+// density() needs).
+Rgb PmcHiEstimator::findEmission(ShadingPoint& point, Draw* d) const {
+    EmissionSource source{.withSelection = oneForAllLights_};
+    const Rgb le = point.incidentEmission(d->direction, &source);
+    d->escaped = source.escaped;
+    d->selectedLightPdf = source.selectedLightPdf;
+    if (source.areaLight) {
+        d->areaLight = source.areaLight->index();
+        d->areaLightPdf = source.areaLightPdf;
+    }
+    return le;
+}
+
 // Eq. (8)'s denominator: every component's density of the sample.
 float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
                               const Draw& d) const {
@@ -180,18 +193,14 @@ float PmcHiEstimator::density(const ShadingPoint& point, const Kernel& kernel,
     if (kernel.alpha[cone] > 0) k += kernel.alpha[cone] * kernel.conePdf(d.direction);
     if (oneForAllLights_) {
         // The integrator's light sampling: the selected light's density, or every infinite
-        // light's for a direction that escapes.
-        Rgb radiance;
-        if (d.areaLight >= 0) k += kernel.alpha[1] * d.selectedLightPdf;
-        if (d.escaped) k += kernel.alpha[1] * point.infiniteLightPdf(d.direction, &radiance);
+        // light's for a direction that escapes (both found with the draw).
+        if (d.areaLight >= 0 || d.escaped) k += kernel.alpha[1] * d.selectedLightPdf;
         return static_cast<float>(k);
     }
     if (d.areaLight >= 0) k += kernel.alpha[1 + d.areaLight] * d.areaLightPdf;
     if (d.escaped)
-        for (const Light* light : lights_)
-            if (light->isInfinite())
-                k +=
-                    kernel.alpha[1 + light->index()] * point.lightDirectionPdf(*light, d.direction);
+        for (const Light* light : infiniteLights_)
+            k += kernel.alpha[1 + light->index()] * point.lightDirectionPdf(*light, d.direction);
     return static_cast<float>(k);
 }
 
@@ -341,14 +350,7 @@ float PmcHiEstimator::mixtureDensity(ShadingPoint& point, const MixtureParameter
                                      const Vec3& wi) const {
     Draw d;
     d.direction = wi;
-    EmissionSource source{.withSelection = oneForAllLights_};
-    if (point.scattering(wi).isBlack() || point.incidentEmission(wi, &source).isBlack()) return 0;
-    d.escaped = source.escaped;
-    if (source.areaLight) {
-        d.areaLight = source.areaLight->index();
-        d.areaLightPdf = source.areaLightPdf;
-        d.selectedLightPdf = source.selectedLightPdf;
-    }
+    if (point.scattering(wi).isBlack() || findEmission(point, &d).isBlack()) return 0;
     return density(point, kernelOf(p), d);
 }
 

@@ -110,6 +110,7 @@ class PmcHiEstimator final : public DirectLightingEstimator {
               uint32_t repeats, Draw* out) const;
     bool drawLightPoint(ShadingPoint& point, uint32_t component, uint32_t repeat, uint32_t repeats,
                         Draw* d) const;
+    Rgb findEmission(ShadingPoint& point, Draw* d) const;
     float density(const ShadingPoint& point, const Kernel& kernel, const Draw& d) const;
     void adapt(const Kernel& previous, const Draw* draws, uint32_t count, Kernel* next) const;
     Kernel initialKernel(const ShadingPoint& point) const;
@@ -118,6 +119,7 @@ class PmcHiEstimator final : public DirectLightingEstimator {
 
     PmcHiSettings settings_;
     std::vector<const Light*> lights_;
+    std::vector<const Light*> infiniteLights_;
     bool oneForAllLights_ = false;
 };
 

@@ -41,10 +41,8 @@ nlohmann::json TaisIntegrator::parameters() const {
                         {"credit", credits[static_cast<int>(settings_.credit)]},
                         {"contribution_filter", settings_.contributionFilter},
                         {"band_rows", settings_.bandRows},
-                        {"band_warmup_rows", settings_.bandWarmupRows},
-                        {"max_depth", settings_.path.maxDepth},
-                        {"rr_depth", settings_.path.rrDepth}};
-    if (settings_.path.rrSurvival > 0) p["rr_survival"] = settings_.path.rrSurvival;
+                        {"band_warmup_rows", settings_.bandWarmupRows}};
+    settings_.path.addTo(&p);
     return p;
 }
 
