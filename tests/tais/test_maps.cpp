@@ -1,7 +1,8 @@
 // TAIS mechanics (Cline et al. 2008, §3.3–3.4, Algorithm 1): warping through a map reproduces
 // its density (χ²), inversion round-trips, propagation averages neighbours exactly, temporary
 // maps splat into the right cells, the 1/n constant keeps every preimage-space density
-// strictly positive, the scan is serpentine, and maximum contribution filtering follows eq. 4.
+// strictly positive, samples are credited and the rest of a map's mass is uniform, the scan is
+// serpentine, and maximum contribution filtering follows eq. 4.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,9 +22,9 @@ namespace {
 using tais::InvertedMap1D;
 using tais::InvertedMap2D;
 
-// Every χ² run in this file: the 1-D warp, the 2-D warp, discrete selection, and two
-// negative controls.
-constexpr int kRuns = 5;
+// Every χ² run in this file: the 1-D warp without and with a uniform part, discrete selection,
+// the 2-D warp of both parts, and two negative controls.
+constexpr int kRuns = 7;
 const Chi2Family kChi2(kRuns);
 constexpr int kSamples = 1000000;
 
@@ -63,6 +64,18 @@ TEST(InvertedMap1D, WarpedSamplesFollowTheMapDensity) {
     kChi2.expectFits(warp1DChi2(map, probabilities(kWeights1D), 1), "1-D warp");
 }
 
+// A map's uniform part (the start, the floor, black pixels) adds evenly to every cell's weight.
+TEST(InvertedMap1D, TheUniformPartAddsToEveryCell) {
+    InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    map.accumulateUniform(0.5);
+    std::vector<double> whole = kWeights1D;
+    for (double& w : whole)
+        w += 0.5;
+    EXPECT_DOUBLE_EQ(map.total(tais::MapPart::Credited), 14.75);
+    EXPECT_DOUBLE_EQ(map.total(), 14.75 + 8 * 0.5);
+    kChi2.expectFits(warp1DChi2(map, probabilities(whole), 6), "1-D warp with a uniform part");
+}
+
 TEST(InvertedMap1D, NegativeControlRejectsTheUniformDensity) {
     const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
     kChi2.expectRejects(warp1DChi2(map, std::vector<double>(8, 1.0 / 8), 2), "1-D vs uniform");
@@ -94,32 +107,59 @@ TEST(InvertedMap1D, WarpAndCdfRoundTrip) {
     }
 }
 
-TEST(InvertedMap2D, WarpedSamplesFollowTheMapDensityAndRoundTrip) {
-    // 4 × 3 cells: a zero row (y = 1) and a zero cell.
-    const std::vector<double> weights = {1, 2, 0, 3, 0, 0, 0, 0, 5, 1, 1, 0.5};
-    const InvertedMap2D map = InvertedMap2D::fromWeights(weights, 4, 3);
-    const std::vector<double> p = probabilities(weights);
-    constexpr int kX = 16, kY = 12;  // 4 × 4 bins per cell
-    std::vector<double> observed(kX * kY, 0.0), expected(kX * kY), wrong(kX * kY);
+// 4 × 3 cells with a zero row (y = 1) and a zero cell, plus a uniform part of 0.25 per cell:
+// warped samples of the whole map, histogrammed 4 × 4 bins per cell, and their density.
+struct Histogram2D {
+    std::vector<double> counts;
+    bool pdfsMatch = true;
+};
+
+Histogram2D warp2D(const InvertedMap2D& map, tais::MapPart part, uint64_t seed) {
+    constexpr int kX = 16, kY = 12;
+    Histogram2D h{std::vector<double>(kX * kY, 0.0)};
     for (int i = 0; i < kSamples; ++i) {
-        const Vec2 u = uniform2(5, i);
+        const Vec2 u = uniform2(seed, i);
         float pdf;
-        const Vec2 x = map.warp(u, &pdf);
-        EXPECT_FLOAT_EQ(pdf, map.pdf(x));
-        if (i < 10000) {
+        const Vec2 x = map.warp(u, &pdf, part);
+        h.pdfsMatch = h.pdfsMatch && pdf == map.pdf(x, part);
+        if (part == tais::MapPart::Whole && i < 10000) {
             const Vec2 back = map.cdf(x);
             EXPECT_NEAR(back.x, u.x, 2e-6f);
             EXPECT_NEAR(back.y, u.y, 2e-6f);
         }
-        observed[std::min(int(x.y * kY), kY - 1) * kX + std::min(int(x.x * kX), kX - 1)] += 1;
+        h.counts[std::min(int(x.y * kY), kY - 1) * kX + std::min(int(x.x * kX), kX - 1)] += 1;
     }
-    for (int by = 0; by < kY; ++by)
-        for (int bx = 0; bx < kX; ++bx) {
-            expected[by * kX + bx] = kSamples * p[(by / 4) * 4 + bx / 4] / 16;
-            wrong[by * kX + bx] = kSamples / double(kX * kY);
-        }
-    kChi2.expectFits(chi2GoodnessOfFit(observed, expected), "2-D warp");
-    kChi2.expectRejects(chi2GoodnessOfFit(observed, wrong), "2-D vs uniform");
+    return h;
+}
+
+// Expected counts of warp2D's bins for cell weights `w` (4 × 3).
+std::vector<double> expected2D(const std::vector<double>& w) {
+    const std::vector<double> p = probabilities(w);
+    std::vector<double> expected(16 * 12);
+    for (int by = 0; by < 12; ++by)
+        for (int bx = 0; bx < 16; ++bx)
+            expected[by * 16 + bx] = kSamples * p[(by / 4) * 4 + bx / 4] / 16;
+    return expected;
+}
+
+// Both parts of a 2-D map: the whole map (the paper's density, credited + uniform) and its
+// credited part alone (world maps mixed by evidence), which never lands in a cell without
+// credit.
+TEST(InvertedMap2D, WarpedSamplesFollowEachPartsDensityAndRoundTrip) {
+    const std::vector<double> credited = {1, 2, 0, 3, 0, 0, 0, 0, 5, 1, 1, 0.5};
+    InvertedMap2D map = InvertedMap2D::fromWeights(credited, 4, 3);
+    map.accumulateUniform(0.25);
+    std::vector<double> whole = credited;
+    for (double& w : whole)
+        w += 0.25;
+    const Histogram2D all = warp2D(map, tais::MapPart::Whole, 5);
+    EXPECT_TRUE(all.pdfsMatch);
+    kChi2.expectFits(chi2GoodnessOfFit(all.counts, expected2D(whole)), "2-D warp");
+    kChi2.expectRejects(chi2GoodnessOfFit(all.counts, expected2D(std::vector<double>(12, 1.0))),
+                        "2-D vs uniform");
+    const Histogram2D part = warp2D(map, tais::MapPart::Credited, 7);
+    EXPECT_TRUE(part.pdfsMatch);
+    kChi2.expectFits(chi2GoodnessOfFit(part.counts, expected2D(credited)), "2-D credited part");
 }
 
 // Fig. 3: the average of seven neighbours' maps is the map of their averaged densities.
@@ -204,6 +244,37 @@ TEST(TemporaryMaps, OneOverNKeepsEveryPreimageDensityPositive) {
     const InvertedMap1D empty = tais::TemporaryMap1D(16).finish(tais::preimageFloor(16));
     for (int c = 0; c < 16; ++c)
         EXPECT_NEAR(empty.pdf((c + 0.5f) / 16), 1.0f, 1e-6f);
+}
+
+// The two parts of a pixel's maps through Algorithm 1: uniform maps have no credited mass; a
+// finished temporary map adds its samples' normalised weights as credited mass and the
+// constant of line 23 as uniform mass; an empty one (a black pixel) adds uniform mass only;
+// normalising keeps the parts' ratio.
+TEST(TemporaryMaps, SamplesAreCreditedTheConstantAndBlackPixelsAreUniform) {
+    tais::TemporaryMap1D pixel(16);
+    pixel.add(0, 3.0);
+    pixel.add(1, 1.0);
+    InvertedMap1D map(16);
+    map.normalize();
+    EXPECT_EQ(map.total(tais::MapPart::Credited), 0.0);
+    const double f = 1e-3 / 16, norm = 1 / (1 + 16 * f);  // floor per entry, line 23
+    pixel.addFinishedTo(map, f);
+    EXPECT_NEAR(map.total(tais::MapPart::Credited), norm, 1e-15);
+    EXPECT_NEAR(map.weight(0, tais::MapPart::Credited), 0.75 * norm, 1e-15);
+    EXPECT_NEAR(map.total(), 2, 1e-15);
+    tais::TemporaryMap1D(16).addFinishedTo(map, f);  // a black pixel
+    EXPECT_NEAR(map.total(tais::MapPart::Credited), norm, 1e-15);
+    map.normalize();
+    EXPECT_NEAR(map.total(tais::MapPart::Credited), norm / 3, 1e-15);
+    EXPECT_NEAR(map.weight(5), (2.0 / 16 + f * norm) / 3, 1e-15);  // uniform only
+
+    tais::TemporaryMap2D square(4, 4);
+    square.splat(Vec2(0.1f, 0.1f), 2.0);
+    InvertedMap2D map2(4, 4);
+    map2.normalize();
+    square.addFinishedTo(map2, f);
+    EXPECT_NEAR(map2.total(tais::MapPart::Credited), 1 / (1 + 16 * f), 1e-15);
+    EXPECT_EQ(map2.weight(3, 3, tais::MapPart::Credited), 0.0);
 }
 
 // Fig. 3 as we read it: x−2 … x+2 in the row above and the two previous pixels of this row in

@@ -1,11 +1,11 @@
 // TAIS is unbiased (Cline et al. 2008, §3.3: a pixel's maps are fixed before it renders): on
-// each of the seven scenes of figures 5–11, at 32 × 32 (one band, so the maps learn across the
-// whole image), the mean of TAIS renders over independent seeds agrees with a long path_mis
-// render, for the image mean and every 8 × 8 block mean of every channel, by z-tests with a
-// Šidák-corrected family-wise level of 1 %. The standard errors come from the per-pixel sample
-// variances: within a pixel the maps are fixed, so its samples are independent, and across
-// pixels the errors are martingale differences (each pixel's expected error is zero whatever
-// the earlier pixels did), so their variances add.
+// each of the seven scenes of figures 5–11 (two with a second setting), at 32 × 32 (one band, so
+// the maps learn across the whole image), the mean of TAIS renders over independent seeds agrees
+// with a long path_mis render, for the image mean and every 8 × 8 block mean of every channel, by
+// z-tests with a Šidák-corrected family-wise level of 1 %. The standard errors come from the
+// per-pixel sample variances: within a pixel the maps are fixed, so its samples are independent,
+// and across pixels the errors are martingale differences (each pixel's expected error is zero
+// whatever the earlier pixels did), so their variances add.
 //
 // The negative control renders with the maximum contribution filter (eq. 4), which is biased,
 // and must be rejected on a scene where bright rare paths carry much of the light.
@@ -23,7 +23,7 @@ namespace rr::test {
 namespace {
 
 constexpr int kSize = 32, kBlock = 8;
-constexpr int kScenes = 7;
+constexpr int kCases = 9;
 
 LoadedScene scene(const std::string& file, const std::string& integrator) {
     return loadSceneFile(file, {"/render/resolution=[32,32]", "/integrator=" + integrator});
@@ -41,7 +41,7 @@ Disagreement compare(const std::string& file, const std::string& tais, uint32_t 
 }
 
 double threshold() {
-    return zThreshold(sidakAlpha(0.01, kScenes * regionTests(kSize, kSize, kBlock)));
+    return zThreshold(sidakAlpha(0.01, kCases * regionTests(kSize, kSize, kBlock)));
 }
 
 struct Case {
@@ -59,7 +59,9 @@ TEST_P(TaisUnbiased, MeanOverSeedsMatchesALongPathMisRender) {
     EXPECT_LT(w.z, threshold()) << c.scene << " with " << c.integrator << ": " << w.where;
 }
 
-// Each figure's own map, all maps the scene has (`auto`), and the paper's credit rule. The
+// Each figure's own map, all maps the scene has (`auto`), the paper's credit rule, light
+// selection steered at four vertices, and the paper's constant α (the other cases let α follow
+// the maps' evidence, the default). The
 // z-test needs many of each region's bright paths on both sides: where they are rare (the
 // colour wheel's lights seen through 1 % of the lens, the caustic found by BSDF sampling), a
 // region's standard error is only trustworthy once dozens of them are in, so those scenes get
@@ -74,14 +76,20 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"tais_fig7_glass_caustic.json", R"({"type":"tais","maps":"auto"})", 4, 1024, 4096},
         Case{"tais_fig8_spot_lights.json", R"({"type":"tais","maps":["light_selection"]})", 4, 256,
              4096},
+        Case{"tais_fig8_spot_lights.json",
+             R"({"type":"tais","maps":["light_selection"],"light_selection_vertices":4})", 4, 256,
+             4096},
         Case{"tais_fig9_glass_reflections.json", R"({"type":"tais","maps":["bifurcation"]})", 4, 64,
+             1024},
+        Case{"tais_fig9_glass_reflections.json",
+             R"({"type":"tais","maps":["bifurcation"],"alpha_follows_evidence":false})", 4, 64,
              1024},
         Case{"tais_fig10_fog_spots.json", R"({"type":"tais","maps":"auto","credit":"path"})", 8,
              512, 8192},
         Case{"tais_fig11_env_glossy_plane.json", R"({"type":"tais","maps":"auto"})", 4, 64, 1024}),
     [](const ::testing::TestParamInfo<Case>& param) {
         std::string name = param.param.scene;
-        return name.substr(0, name.find('.'));
+        return name.substr(0, name.find('.')) + "_" + std::to_string(param.index);
     });
 
 TEST(TaisUnbiasedNegativeControl, TheMaximumContributionFilterIsDetectedAsBiased) {

@@ -22,14 +22,14 @@ float positionInCell(int cell, double fraction, int cells) {
 
 }  // namespace
 
-InvertedMap1D::InvertedMap1D(int cells) : sums_(static_cast<size_t>(cells) + 1) {
+InvertedMap1D::InvertedMap1D(int cells) : sums_(static_cast<size_t>(cells) + 1, 0.0) {
     if (cells < 1) throw std::invalid_argument("an importance map needs at least one cell");
-    for (int i = 0; i <= cells; ++i)
-        sums_[i] = i;
+    uniform_ = cells;  // weight 1 in every cell
 }
 
 InvertedMap1D InvertedMap1D::fromWeights(std::span<const double> weights) {
     InvertedMap1D map(static_cast<int>(weights.size()));
+    map.uniform_ = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
         if (!(weights[i] >= 0) || !std::isfinite(weights[i]))
             throw std::invalid_argument("importance map weights must be finite and >= 0");
@@ -44,6 +44,7 @@ void InvertedMap1D::accumulate(const InvertedMap1D& other, double scale) {
         throw std::invalid_argument("importance maps of different sizes");
     for (size_t i = 0; i < sums_.size(); ++i)
         sums_[i] += scale * other.sums_[i];
+    uniform_ += scale * other.uniform_;
 }
 
 void InvertedMap1D::accumulateWeights(std::span<const double> weights, double scale,
@@ -52,29 +53,34 @@ void InvertedMap1D::accumulateWeights(std::span<const double> weights, double sc
         throw std::invalid_argument("importance maps of different sizes");
     double running = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
-        running += scale * weights[i] + perCell;
+        running += scale * weights[i];
         sums_[i + 1] += running;
     }
-}
-
-void InvertedMap1D::accumulateUniform(double perCell) {
-    for (size_t i = 1; i < sums_.size(); ++i)
-        sums_[i] += perCell * double(i);
+    accumulateUniform(perCell);
 }
 
 void InvertedMap1D::scale(double factor) {
     for (double& s : sums_)
         s *= factor;
+    uniform_ *= factor;
 }
 
-Inversion invertRunningSums(std::span<const double> sums, float u) {
+Inversion invertRunningSums(std::span<const double> sums, float u, double perCell) {
     const int cells = int(sums.size()) - 1;
-    const double target = double(u) * sums.back();
+    auto f = [&](int i) { return sums[size_t(i)] + i * perCell; };
+    const double target = f(0) + double(u) * (f(cells) - f(0));
     // The first running sum above the target ends the cell: zero-weight cells are skipped.
-    const auto above = std::upper_bound(sums.begin(), sums.end(), target);
-    const int cell = std::clamp(int(above - sums.begin()) - 1, 0, cells - 1);
-    const double w = sums[cell + 1] - sums[cell];
-    return {cell, w > 0 ? std::clamp((target - sums[cell]) / w, 0.0, 1.0) : 0.0};
+    int lo = 0, hi = cells + 1;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (f(mid) > target)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    const int cell = std::clamp(lo - 1, 0, cells - 1);
+    const double w = f(cell + 1) - f(cell);
+    return {cell, w > 0 ? std::clamp((target - f(cell)) / w, 0.0, 1.0) : 0.0};
 }
 
 float InvertedMap1D::warp(float u, float* pdf) const {
@@ -97,15 +103,13 @@ float InvertedMap1D::cdf(float uPrime) const {
     // The CDF is continuous, so locating u' on either side of a cell edge gives one value.
     const int cell = cellOf(uPrime, cells());
     const double within = std::clamp(double(uPrime), 0.0, 1.0) * cells() - cell;
-    return float((sums_[cell] + within * weight(cell)) / total());
+    const double below = sums_[cell] + cell * uniformPerCell(MapPart::Whole);
+    return float((below + within * weight(cell)) / total());
 }
 
 InvertedMap2D::InvertedMap2D(int width, int height)
-    : width_(width), height_(height), sums_(size_t(width + 1) * height), rowTotals_(height) {
-    // Uniform: each row's running sums are 0, 1, …, width, so every row total is `width`.
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x <= width; ++x)
-            sums_[size_t(y) * (width + 1) + x] = x;
+    : width_(width), height_(height), sums_(size_t(width + 1) * height, 0.0), rowTotals_(height) {
+    // Uniform: weight 1 in every cell, so every row's total is `width`.
     rowTotals_.scale(width);
 }
 
@@ -140,19 +144,12 @@ void InvertedMap2D::accumulateWeights(std::span<const double> weights, double sc
         double* row = sums_.data() + size_t(y) * (width_ + 1);
         double running = 0;
         for (int x = 0; x < width_; ++x) {
-            running += scale * weights[size_t(y) * width_ + x] + perCell;
+            running += scale * weights[size_t(y) * width_ + x];
             row[x + 1] += running;
         }
         totals[size_t(y)] = running;
     }
-    rowTotals_.accumulateWeights(totals, 1);
-}
-
-void InvertedMap2D::accumulateUniform(double perCell) {
-    for (int y = 0; y < height_; ++y)
-        for (int x = 1; x <= width_; ++x)
-            sums_[size_t(y) * (width_ + 1) + x] += perCell * x;
-    rowTotals_.accumulateUniform(perCell * width_);
+    rowTotals_.accumulateWeights(totals, 1, perCell * width_);
 }
 
 void InvertedMap2D::scale(double factor) {
@@ -161,25 +158,29 @@ void InvertedMap2D::scale(double factor) {
     rowTotals_.scale(factor);
 }
 
-Vec2 InvertedMap2D::warp(Vec2 u, float* pdf) const {
-    const Inversion r = rowTotals_.invert(u.y);
-    const Inversion column = invertRunningSums(row(r.cell), u.x);
-    *pdf = float(double(width_) * height_ * weight(column.cell, r.cell) / total());
+Vec2 InvertedMap2D::warp(Vec2 u, float* pdf, MapPart part) const {
+    const Inversion r = rowTotals_.invert(u.y, part);
+    const Inversion column = invertRunningSums(row(r.cell), u.x, uniformPerCell(part));
+    *pdf = float(double(width_) * height_ * weight(column.cell, r.cell, part) / total(part));
     return {positionInCell(column.cell, column.fraction, width_),
             positionInCell(r.cell, r.fraction, height_)};
 }
 
-float InvertedMap2D::pdf(Vec2 uPrime) const {
+float InvertedMap2D::pdf(Vec2 uPrime, MapPart part) const {
     return float(double(width_) * height_ *
-                 weight(cellOf(uPrime.x, width_), cellOf(uPrime.y, height_)) / total());
+                 weight(cellOf(uPrime.x, width_), cellOf(uPrime.y, height_), part) / total(part));
 }
 
 Vec2 InvertedMap2D::cdf(Vec2 uPrime) const {
     const std::span<const double> sums = row(cellOf(uPrime.y, height_));
     const int cell = cellOf(uPrime.x, width_);
     const double within = std::clamp(double(uPrime.x), 0.0, 1.0) * width_ - cell;
-    const double w = sums[cell + 1] - sums[cell];
-    return {float((sums[cell] + within * w) / sums.back()), rowTotals_.cdf(uPrime.y)};
+    const double perCell = uniformPerCell(MapPart::Whole);
+    const double below = sums[size_t(cell)] + cell * perCell;
+    const double rowTotal = sums.back() + width_ * perCell;
+    return {float((below + within * (sums[size_t(cell) + 1] - sums[size_t(cell)] + perCell)) /
+                  rowTotal),
+            rowTotals_.cdf(uPrime.y)};
 }
 
 }  // namespace rr::tais

@@ -12,11 +12,18 @@
 // the paper's "CDF for each row of the map, as well as an extra CDF of the Y axis marginal";
 // unnormalised rows keep that layout linear too.
 //
+// A map's mass has two parts, kept apart: the part samples put there (`credited`, the running
+// sums) and a part spread evenly over every cell (`uniform`, one number): the uniform start,
+// the constant of line 23, the maps of pixels whose samples were all black. The map's density
+// is their sum (`MapPart::Whole`, the paper's); world maps can also be sampled from their
+// credited part alone (MapPart::Credited, TaisSettings::alphaFollowsEvidence).
+//
 // A preimage-space map warps uniform coordinates u to u' = F⁻¹(u) before standard importance
 // sampling, with density p_map(u') (TAIS: p_tot = p_map · p_is).
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -29,31 +36,41 @@ inline int cellOf(float u, int cells) {
     return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
 }
 
-// Inversion of running sums `sums` (size cells + 1, non-decreasing, sums.back() > 0): the cell
-// that u ∈ [0, 1) falls in under the inverse CDF, and the position within it.
+// Which of a map's mass a density or a draw uses (see above).
+enum class MapPart : uint8_t { Whole, Credited };
+
+// Inversion of the running sums f(i) = sums[i] + i · perCell (`sums` of size cells + 1,
+// non-decreasing, perCell ≥ 0, f(cells) > f(0)): the cell that u ∈ [0, 1) falls in under the
+// inverse CDF, and the position within it. The sums may be a slice of a longer map's.
 struct Inversion {
     int cell;
     double fraction;
 };
-Inversion invertRunningSums(std::span<const double> sums, float u);
+Inversion invertRunningSums(std::span<const double> sums, float u, double perCell = 0);
 
 class InvertedMap1D {
   public:
     // A uniform map of `cells` cells.
     explicit InvertedMap1D(int cells);
-    // The map of non-negative, finite `weights` (not all zero).
+    // The map of non-negative, finite `weights` (not all zero), all credited.
     static InvertedMap1D fromWeights(std::span<const double> weights);
 
     int cells() const { return static_cast<int>(sums_.size()) - 1; }
-    double total() const { return sums_.back(); }
-    double weight(int cell) const { return sums_[cell + 1] - sums_[cell]; }
+    double total(MapPart part = MapPart::Whole) const {
+        return sums_.back() + (part == MapPart::Whole ? uniform_ : 0.0);
+    }
+    double weight(int cell, MapPart part = MapPart::Whole) const {
+        return sums_[cell + 1] - sums_[cell] + uniformPerCell(part);
+    }
+    double uniformMass() const { return uniform_; }
 
     // this += scale · other (same size): averaging and blending maps (§3.3).
     void accumulate(const InvertedMap1D& other, double scale = 1);
-    // this += the map of scale · `weights` + `perCell` in every cell, without building it.
+    // this += the map of scale · `weights` (credited) + `perCell` in every cell (uniform),
+    // without building it.
     void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
     // this += `perCell` in every cell.
-    void accumulateUniform(double perCell);
+    void accumulateUniform(double perCell) { uniform_ += perCell * cells(); }
     void scale(double factor);
     // Divides by the total, so that maps of any history blend with equal weight.
     void normalize() { scale(1.0 / total()); }
@@ -69,49 +86,74 @@ class InvertedMap1D {
     float cdf(float uPrime) const;
     float probability(int cell) const { return float(weight(cell) / total()); }
 
-    Inversion invert(float u) const { return invertRunningSums(sums_, u); }
+    // Discrete maps of several decisions, each on its own slice of cells [first, first + count)
+    // (bifurcation and light selection per path vertex): the slice's mass, and a cell of the
+    // slice with probability weight / slice total (which must be positive).
+    double sliceTotal(int first, int count, MapPart part = MapPart::Whole) const {
+        return sums_[first + count] - sums_[first] + count * uniformPerCell(part);
+    }
+    int sampleCellIn(int first, int count, float u, MapPart part = MapPart::Whole) const {
+        const std::span<const double> slice(sums_.data() + first, size_t(count) + 1);
+        return first + invertRunningSums(slice, u, uniformPerCell(part)).cell;
+    }
+
+    Inversion invert(float u, MapPart part = MapPart::Whole) const {
+        return invertRunningSums(sums_, u, uniformPerCell(part));
+    }
 
   private:
-    std::vector<double> sums_;  // sums_[i] = weight of cells < i; size cells + 1
+    double uniformPerCell(MapPart part) const {
+        return part == MapPart::Whole ? uniform_ / cells() : 0.0;
+    }
+
+    std::vector<double> sums_;  // credited: sums_[i] = weight of cells < i; size cells + 1
+    double uniform_ = 0;        // spread evenly over the cells
 };
 
 class InvertedMap2D {
   public:
     // A uniform map of width × height cells (row y covers v ∈ [y/height, (y+1)/height)).
     InvertedMap2D(int width, int height);
-    // The map of `weights` (width · height, row-major, non-negative, finite, not all zero).
+    // The map of `weights` (width · height, row-major, non-negative, finite, not all zero),
+    // all credited.
     static InvertedMap2D fromWeights(std::span<const double> weights, int width, int height);
 
     int width() const { return width_; }
     int height() const { return height_; }
-    double total() const { return rowTotals_.total(); }
-    double weight(int x, int y) const {
+    double total(MapPart part = MapPart::Whole) const { return rowTotals_.total(part); }
+    double weight(int x, int y, MapPart part = MapPart::Whole) const {
         const double* row = rowSums(y);
-        return row[x + 1] - row[x];
+        return row[x + 1] - row[x] + uniformPerCell(part);
     }
 
     void accumulate(const InvertedMap2D& other, double scale = 1);
-    // this += the map of scale · `weights` (row-major) + `perCell` in every cell.
+    // this += the map of scale · `weights` (row-major, credited) + `perCell` in every cell.
     void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
-    void accumulateUniform(double perCell);
+    void accumulateUniform(double perCell) { rowTotals_.accumulateUniform(perCell * width_); }
     void scale(double factor);
     void normalize() { scale(1.0 / total()); }
 
-    // Preimage warp of (u, v) ∈ [0, 1)²: v' by the marginal over rows, then u' within the row.
-    Vec2 warp(Vec2 u, float* pdf) const;
-    float pdf(Vec2 uPrime) const;
+    // Warp of (u, v) ∈ [0, 1)²: v' by the marginal over rows, then u' within the row, with the
+    // density of (u', v') on [0, 1)² under the map's `part`, whose total must be positive.
+    Vec2 warp(Vec2 u, float* pdf, MapPart part = MapPart::Whole) const;
+    float pdf(Vec2 uPrime, MapPart part = MapPart::Whole) const;
     // The inverse of warp(): (conditional CDF within the row, marginal CDF over rows).
     Vec2 cdf(Vec2 uPrime) const;
 
   private:
     const double* rowSums(int y) const { return sums_.data() + size_t(y) * (width_ + 1); }
     std::span<const double> row(int y) const { return {rowSums(y), size_t(width_) + 1}; }
+    double uniformPerCell(MapPart part) const {
+        return part == MapPart::Whole ? rowTotals_.uniformMass() / (double(width_) * height_) : 0.0;
+    }
 
     int width_, height_;
-    // Row y's running sums (unnormalised) at [y · (width + 1), (y + 1) · (width + 1)): one
-    // contiguous block, so averaging and blending maps is one pass over memory.
+    // Row y's credited running sums (unnormalised) at [y · (width + 1), (y + 1) · (width + 1)):
+    // one contiguous block, so averaging and blending maps is one pass over memory.
     std::vector<double> sums_;
-    InvertedMap1D rowTotals_;  // running sums of the row totals
+    // Running sums of the rows' credited totals; its uniform part is the whole map's, spread
+    // evenly over the rows as over the cells.
+    InvertedMap1D rowTotals_;
 };
 
 // TAIS fig. 3: a pixel's maps start as the average of its already-rendered neighbours' maps

@@ -58,23 +58,37 @@ float MapGuide::flightCoordinate(uint32_t vertex, const Rgb& radiance, float* wa
     return warped;
 }
 
-float MapGuide::selectionPmf(const Light& light, const Vec3& reference) const {
+MapPart MapGuide::mapPart() const {
+    return settings_.alphaFollowsEvidence ? MapPart::Credited : MapPart::Whole;
+}
+
+float MapGuide::alphaFor(double partMass, double wholeMass) const {
+    return float(settings_.alpha * (partMass / wholeMass));
+}
+
+float MapGuide::selectionPmf(const Light& light, const Vec3& reference, uint32_t vertex) const {
     const float standard = scene().lightSelector().pmf(light, reference);
-    if (!maps_.lightSelection) return standard;
-    const float a = settings_.alpha;
-    return a * maps_.lightSelection->probability(light.index()) + (1 - a) * standard;
+    if (!steersSelection(vertex)) return standard;
+    const InvertedMap1D& map = *maps_.lightSelection;
+    const int first = lightSelectionCell(int(vertex), 0, maps_.lights);
+    const double mass = map.sliceTotal(first, maps_.lights, mapPart());
+    const float a = alphaFor(mass, map.sliceTotal(first, maps_.lights));
+    const double q = a > 0 ? map.weight(first + light.index(), mapPart()) / mass : 0.0;
+    return a * float(q) + (1 - a) * standard;
 }
 
 float MapGuide::pointOnLightPdf(const Light& light, const LightReference& reference,
-                                const Vec3& direction, const Vec3& point) const {
+                                const Vec3& direction, const Vec3& point, uint32_t vertex) const {
     Vec2 u;
-    if (!warpsPointOn(light) || !light.invertSample(reference, direction, point, &u)) return 1;
+    if (!warpsPointOn(light, vertex) || !light.invertSample(reference, direction, point, &u))
+        return 1;
     return maps_.pointOnLight->pdf(u);
 }
 
 bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
                            const LightReference& reference, float time, LightSample* ls, float* pdf,
                            const Light** chosen) {
+    lightRecords_ = 0;
     if (!guidesLights(vertex))
         return StandardSampling::sampleLight(vertex, repeat, count, draw, reference, time, ls, pdf,
                                              chosen);
@@ -83,26 +97,33 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
     Vec2 uPoint = sample().get2D({Decision::LightPoint, vertex, repeat, count});
     const Light* light;
     float selectPmf;
-    if (maps_.lightSelection) {
-        // Eq. (2): the map with probability α, the scene's selector otherwise.
-        const float a = settings_.alpha;
+    if (steersSelection(vertex)) {
+        // Eq. (2): the map's entries of this vertex with probability α, the scene's selector
+        // otherwise.
+        const InvertedMap1D& map = *maps_.lightSelection;
+        const int first = lightSelectionCell(int(vertex), 0, maps_.lights);
+        const float a = alphaFor(map.sliceTotal(first, maps_.lights, mapPart()),
+                                 map.sliceTotal(first, maps_.lights));
         float unused;
-        light = uSelect < a ? scene().lights()[size_t(maps_.lightSelection->sampleCell(
-                                  rescale(uSelect, 0, a), &unused))]
-                            : selector.select(rescale(uSelect, a, 1), reference.point, &unused);
+        light = uSelect < a
+                    ? scene().lights()[size_t(
+                          map.sampleCellIn(first, maps_.lights, rescale(uSelect, 0, a), mapPart()) -
+                          first)]
+                    : selector.select(rescale(uSelect, a, 1), reference.point, &unused);
         if (!light) return false;
-        selectPmf = selectionPmf(*light, reference.point);
-        record(MapKind::LightSelection, light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f), true);
+        selectPmf = selectionPmf(*light, reference.point, vertex);
+        record(MapKind::LightSelection, first + light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f), true);
+        ++lightRecords_;
     } else {
         light = selector.select(uSelect, reference.point, &selectPmf);
         if (!light) return false;
     }
     float warp = 1;
-    if (warpsPointOn(*light)) {
+    if (warpsPointOn(*light, vertex)) {
         uPoint = maps_.pointOnLight->warp(uPoint, &warp);
         record(MapKind::PointOnLight, 0, uPoint, Rgb(0.0f), true);
+        ++lightRecords_;
     }
-    lightRecords_ = (maps_.lightSelection ? 1 : 0) + (warpsPointOn(*light) ? 1 : 0);
     // The warp is a density on the coordinates: it composes with either sampler's.
     if (!light->draw(draw, reference, uPoint, time, ls)) return false;
     *pdf = selectPmf * ls->pdf * warp;  // eq. (3) for the point
@@ -110,8 +131,8 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
     return true;
 }
 
-void MapGuide::lightContribution(uint32_t vertex, const Rgb& contribution) {
-    if (!guidesLights(vertex)) return;
+void MapGuide::lightContribution(uint32_t /*vertex*/, const Rgb& contribution) {
+    // The records of the light sample just drawn (none when standard sampling drew it).
     for (int i = recordCount_ - lightRecords_; i < recordCount_; ++i)
         records_[i].amount = contribution;
     lightRecords_ = 0;
@@ -121,15 +142,15 @@ float MapGuide::lightPdf(uint32_t vertex, const AreaLight& light, const LightRef
                          const SurfaceHit& hit) const {
     if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, hit);
     const Vec3 direction = normalize(hit.position - reference.point);
-    return selectionPmf(light, reference.point) * light.pdf(reference.point, hit) *
-           pointOnLightPdf(light, reference, direction, hit.position);
+    return selectionPmf(light, reference.point, vertex) * light.pdf(reference.point, hit) *
+           pointOnLightPdf(light, reference, direction, hit.position, vertex);
 }
 
 float MapGuide::lightPdf(uint32_t vertex, const Light& light, const LightReference& reference,
                          const Vec3& w) const {
     if (!guidesLights(vertex)) return StandardSampling::lightPdf(vertex, light, reference, w);
-    return selectionPmf(light, reference.point) * light.directionPdf(reference, w) *
-           pointOnLightPdf(light, reference, w, reference.point + w);
+    return selectionPmf(light, reference.point, vertex) * light.directionPdf(reference, w) *
+           pointOnLightPdf(light, reference, w, reference.point + w, vertex);
 }
 
 bool MapGuide::sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
@@ -149,11 +170,14 @@ bool MapGuide::sampleBifurcation(uint32_t vertex, const Material& material,
                                  BsdfSample* bs) {
     // Eq. (2) over {reflect, transmit}: the map's conditional probability of reflecting at
     // this vertex, mixed with the material's own (Fresnel) choice.
-    const double reflectWeight = maps_.bifurcation->weight(bifurcationCell(int(vertex), true));
-    const double transmitWeight = maps_.bifurcation->weight(bifurcationCell(int(vertex), false));
-    const float q = float(reflectWeight / (reflectWeight + transmitWeight));
+    const InvertedMap1D& map = *maps_.bifurcation;
+    const int reflectCell = bifurcationCell(int(vertex), true);
+    const int transmitCell = bifurcationCell(int(vertex), false);
+    const double reflectMass = map.weight(reflectCell, mapPart());
+    const double mass = reflectMass + map.weight(transmitCell, mapPart());
+    const float a = alphaFor(mass, map.weight(reflectCell) + map.weight(transmitCell));
+    const float q = a > 0 ? float(reflectMass / mass) : 0.0f;
     const float fresnel = material.reflectionChoice(ctx, wo);
-    const float a = settings_.alpha;
     const float reflectProbability = a * q + (1 - a) * fresnel;
     const float u = sample().get1D(Decision::BsdfLobe, vertex);
     const bool reflect = u < reflectProbability;
@@ -174,17 +198,21 @@ bool MapGuide::sampleBifurcation(uint32_t vertex, const Material& material,
     return true;
 }
 
+float MapGuide::directionMapTerm(const InvertedMap2D& map, float a, Vec2 cell) const {
+    return a > 0 ? a * directionPdfFromMap(map.pdf(cell, mapPart())) : 0.0f;
+}
+
 bool MapGuide::sampleDirection(uint32_t vertex, const InvertedMap2D& map, const Material& material,
                                const ShadingContext& ctx, const Frame& frame, const Vec3& wo,
                                const Rgb& radiance, BsdfSample* bs) {
-    const float a = settings_.alpha;
+    const float a = alphaFor(map.total(mapPart()), map.total());
     const float u = sample().get1D(Decision::BsdfLobe, vertex);
     const Vec2 uDirection = sample().get2D(Decision::BsdfDirection, vertex);
     Vec2 cell;
     if (u < a) {
         // From the map: a world direction, evaluated through the material.
         float mapPdf;
-        cell = map.warp(uDirection, &mapPdf);
+        cell = map.warp(uDirection, &mapPdf, mapPart());
         const Vec3 wi = frame.toLocal(mapToDirection(cell));
         const Rgb f = material.eval(ctx, wo, wi);
         if (f.isBlack()) return false;  // the sample's value is 0 from here on
@@ -197,7 +225,7 @@ bool MapGuide::sampleDirection(uint32_t vertex, const InvertedMap2D& map, const 
     } else {
         if (!material.sample(ctx, wo, rescale(u, a, 1), uDirection, bs)) return false;
         cell = directionToMap(frame.toWorld(bs->wi));
-        const float pdf = a * directionPdfFromMap(map.pdf(cell)) + (1 - a) * bs->pdf;
+        const float pdf = directionMapTerm(map, a, cell) + (1 - a) * bs->pdf;
         bs->weight *= bs->pdf / pdf;
         bs->pdf = pdf;
     }
@@ -210,8 +238,8 @@ float MapGuide::bsdfPdf(uint32_t /*vertex*/, const Material& material, const Sha
     const float pdf = material.pdf(ctx, wo, wi);
     const InvertedMap2D* map = (material.lobes() & kSpecular) ? nullptr : directionMap();
     if (!map) return pdf;
-    const float a = settings_.alpha;
-    return a * directionPdfFromMap(map->pdf(directionToMap(frame.toWorld(wi)))) + (1 - a) * pdf;
+    const float a = alphaFor(map->total(mapPart()), map->total());
+    return directionMapTerm(*map, a, directionToMap(frame.toWorld(wi))) + (1 - a) * pdf;
 }
 
 void MapGuide::splat(const Rgb& value, TemporaryMaps& maps) const {

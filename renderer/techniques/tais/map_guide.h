@@ -3,17 +3,21 @@
 // each member) with the members whose decisions a map steers hidden. Which decision each map
 // steers:
 //  - time and lens: the camera's; scatter distance: the camera ray's free flight (vertex 0);
-//  - light selection and point on light: next-event estimation at the first scattering vertex
-//    (vertex 0), the one a pixel's neighbours share most;
+//  - point on light: next-event estimation at the first scattering vertex (vertex 0), the one
+//    a pixel's neighbours share most; light selection: there, and at the next vertices when
+//    lightSelectionVertices > 1, each vertex from its own entries;
 //  - bifurcation: reflect or transmit at every vertex v < bifurcationVertices;
 //  - scatter direction: the first (and second) surface vertex whose material has no specular
 //    lobe (media vertices sample their phase function as usual).
 // Preimage maps warp the decision's coordinates and divide the sample by p_map (eq. 3). World
 // maps choose with probability α from the map and otherwise by standard sampling, with the
 // mixture density of eq. (2) in the sample's weight and in every MIS weight that involves the
-// decision, so the estimator stays unbiased. A point-on-light map warps only lights that can
-// invert their sampling (Light::canInvertSample), since MIS must find the map density of a
-// point that BSDF sampling hit; other lights are sampled as usual.
+// decision, so the estimator stays unbiased. By default they draw from the map's credited part
+// only, with α scaled by its share (TaisSettings::alphaFollowsEvidence; fixed before the
+// pixel's samples, as the maps are). A
+// point-on-light map warps only lights that can invert their sampling (Light::canInvertSample),
+// since MIS must find the map density of a point that BSDF sampling hit; other lights are sampled
+// as usual.
 //
 // The guide remembers where each decision fell; splat() then adds the sample to the pixel's
 // temporary maps (line 19) at those coordinates.
@@ -60,8 +64,12 @@ class MapGuide : public StandardSampling {
     // coordinates of its decisions, credited as settings.credit says.
     void splat(const Rgb& value, TemporaryMaps& maps) const;
 
-    // The most decisions one path records: bifurcation vertices plus the other maps.
-    static constexpr int kMaxRecords = 40;
+    // The most decisions one path records: bifurcation and light-selection vertices (one light
+    // sample per vertex), a point on a light, and the time, lens, scatter-distance and two
+    // scatter-direction maps.
+    static constexpr int kMaxBifurcationVertices = 32;
+    static constexpr int kMaxLightSelectionVertices = 8;
+    static constexpr int kMaxRecords = kMaxBifurcationVertices + kMaxLightSelectionVertices + 6;
 
   private:
     // Where one decision fell. `amount` is the path's radiance before the decision (the
@@ -76,17 +84,30 @@ class MapGuide : public StandardSampling {
     void record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
                 bool isContribution = false);
 
+    bool steersSelection(uint32_t vertex) const {
+        return maps_.lightSelection && int(vertex) < settings_.lightSelectionVertices;
+    }
+    bool warpsPoints(uint32_t vertex) const { return vertex == 0 && maps_.pointOnLight; }
     bool guidesLights(uint32_t vertex) const {
-        return vertex == 0 && (maps_.lightSelection || maps_.pointOnLight);
+        return steersSelection(vertex) || warpsPoints(vertex);
     }
-    bool warpsPointOn(const Light& light) const {
-        return maps_.pointOnLight && invertible_[size_t(light.index())];
+    bool warpsPointOn(const Light& light, uint32_t vertex) const {
+        return warpsPoints(vertex) && invertible_[size_t(light.index())];
     }
-    // Eq. (2) for the light-selection map: α q(light) + (1 − α) p_selector(light).
-    float selectionPmf(const Light& light, const Vec3& reference) const;
+    // Eq. (2) for one decision of a world map: the part of the map drawn from and α. With the
+    // evidence weighting (the default), the credited part, and α times that part's share of
+    // the decision's mass (`partMass` of `wholeMass`): the uncredited, even share is left to
+    // standard sampling. Otherwise the whole map and α (partMass = wholeMass).
+    MapPart mapPart() const;
+    float alphaFor(double partMass, double wholeMass) const;
+    // The map's share a · p_map(cell) of the scatter-direction mixture (0 when a = 0, where
+    // the credited part may be empty).
+    float directionMapTerm(const InvertedMap2D& map, float a, Vec2 cell) const;
+    // Eq. (2) for the light-selection map at `vertex`: α q_v(light) + (1 − α) p_selector(light).
+    float selectionPmf(const Light& light, const Vec3& reference, uint32_t vertex) const;
     // The point-on-light map's density at the coordinates of `point` (1 when not warped).
     float pointOnLightPdf(const Light& light, const LightReference& reference,
-                          const Vec3& direction, const Vec3& point) const;
+                          const Vec3& direction, const Vec3& point, uint32_t vertex) const;
     const InvertedMap2D* directionMap() const {
         return bounce_ < int(maps_.scatterDirection.size()) ? &maps_.scatterDirection[bounce_]
                                                             : nullptr;

@@ -41,7 +41,8 @@ void emplaceEnabled(Maps& m, const TaisSettings& s, int lightCount) {
     if (s.uses(MapKind::Time)) m.time.emplace(s.timeCells);
     if (s.uses(MapKind::ScatterDistance)) m.scatterDistance.emplace(s.scatterDistanceCells);
     if (s.uses(MapKind::Bifurcation)) m.bifurcation.emplace(2 * s.bifurcationVertices);
-    if (s.uses(MapKind::LightSelection)) m.lightSelection.emplace(lightCount);
+    if (s.uses(MapKind::LightSelection))
+        m.lightSelection.emplace(s.lightSelectionVertices * lightCount);
     if (s.uses(MapKind::Lens)) m.lens.emplace(s.lensSize, s.lensSize);
     if (s.uses(MapKind::PointOnLight))
         m.pointOnLight.emplace(s.pointOnLightSize, s.pointOnLightSize);
@@ -69,6 +70,7 @@ Vec3 mapToDirection(Vec2 p) {
 PixelMaps PixelMaps::uniform(const TaisSettings& s, int lightCount) {
     PixelMaps m;
     emplaceEnabled(m, s, lightCount);
+    m.lights = lightCount;
     m.normalize();
     return m;
 }

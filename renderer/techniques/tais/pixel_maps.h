@@ -4,7 +4,8 @@
 // Layouts:
 //  - bifurcation: 2 entries per path vertex index v < bifurcationVertices, reflect_v at 2v and
 //    transmit_v at 2v + 1 (fig. 12, "reflect0, transmit1, transmit2");
-//  - light selection: one entry per light, by the light's index in the scene;
+//  - light selection: one entry per light, by the light's index in the scene, for each path
+//    vertex v < lightSelectionVertices: light l of vertex v at v · lights + l;
 //  - scatter direction: a world-space direction w ↦ (φ / 2π, (1 − w.z) / 2) ∈ [0, 1)². The paper
 //    indexes the map by (θ, φ); we use cos θ instead of θ so that every cell covers the same
 //    solid angle (4π / cells) and the map's density is finite at the poles.
@@ -31,11 +32,15 @@ inline float directionPdfFromMap(float mapPdf) {
 inline int bifurcationCell(int vertex, bool reflect) {
     return 2 * vertex + (reflect ? 0 : 1);
 }
+inline int lightSelectionCell(int vertex, int light, int lights) {
+    return vertex * lights + light;
+}
 
 struct PixelMaps {
     std::optional<InvertedMap1D> time, scatterDistance, bifurcation, lightSelection;
     std::optional<InvertedMap2D> lens, pointOnLight;
     std::vector<InvertedMap2D> scatterDirection;  // [bounce]
+    int lights = 0;                               // the scene's: the light-selection layout
 
     // Uniform maps of the enabled kinds (a pixel with no rendered neighbour).
     static PixelMaps uniform(const TaisSettings& settings, int lightCount);

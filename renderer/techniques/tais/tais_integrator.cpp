@@ -31,6 +31,7 @@ nlohmann::json TaisIntegrator::parameters() const {
                         {"maps", settings_.automatic ? "auto" : "listed"},
                         {"maps_used", mapList(settings_)},
                         {"alpha", settings_.alpha},
+                        {"alpha_follows_evidence", settings_.alphaFollowsEvidence},
                         {"time_cells", settings_.timeCells},
                         {"scatter_distance_cells", settings_.scatterDistanceCells},
                         {"lens_size", settings_.lensSize},
@@ -38,6 +39,7 @@ nlohmann::json TaisIntegrator::parameters() const {
                         {"scatter_direction_size", settings_.scatterDirectionSize},
                         {"scatter_direction_bounces", settings_.scatterDirectionBounces},
                         {"bifurcation_vertices", settings_.bifurcationVertices},
+                        {"light_selection_vertices", settings_.lightSelectionVertices},
                         {"credit", credits[static_cast<int>(settings_.credit)]},
                         {"contribution_filter", settings_.contributionFilter},
                         {"band_rows", settings_.bandRows},
@@ -143,6 +145,7 @@ std::unique_ptr<TaisIntegrator> makeTaisIntegrator(ObjectReader& j, const PathSe
         }
     }
     s.alpha = j.getFloat("alpha", s.alpha, Range::open(0, 1));
+    s.alphaFollowsEvidence = j.getBool("alpha_follows_evidence", s.alphaFollowsEvidence);
     auto size = [&](const char* key, int fallback, int lo, int hi) {
         return static_cast<int>(j.getInt(key, fallback, Range::closed(lo, hi)));
     };
@@ -153,7 +156,9 @@ std::unique_ptr<TaisIntegrator> makeTaisIntegrator(ObjectReader& j, const PathSe
     s.scatterDirectionSize = size("scatter_direction_size", s.scatterDirectionSize, 2, 256);
     s.scatterDirectionBounces = size("scatter_direction_bounces", s.scatterDirectionBounces, 1, 2);
     s.bifurcationVertices =
-        size("bifurcation_vertices", s.bifurcationVertices, 1, MapGuide::kMaxRecords - 8);
+        size("bifurcation_vertices", s.bifurcationVertices, 1, MapGuide::kMaxBifurcationVertices);
+    s.lightSelectionVertices = size("light_selection_vertices", s.lightSelectionVertices, 1,
+                                    MapGuide::kMaxLightSelectionVertices);
     s.credit = j.getChoice("credit", {"downstream", "path"}, "downstream") == "path"
                    ? Credit::Path
                    : Credit::Downstream;

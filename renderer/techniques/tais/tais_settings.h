@@ -19,7 +19,7 @@ enum class MapKind : uint8_t {
     Lens,              // 2-D preimage: point on the aperture (depth of field)
     ScatterDistance,   // 1-D preimage: free-flight distance of the camera ray in a medium
     Bifurcation,       // discrete world: reflect or transmit, per path vertex index
-    LightSelection,    // discrete world: which light next-event estimation samples
+    LightSelection,    // discrete world: which light next-event estimation samples, per vertex
     PointOnLight,      // 2-D preimage: the light sample's coordinates
     ScatterDirection,  // 2-D world: direction of the first (and second) non-specular bounce
     Count
@@ -54,7 +54,15 @@ struct TaisSettings {
     int scatterDirectionSize = 32;
     int scatterDirectionBounces = 1;  // fig. 14: a second map for the second bounce
     int bifurcationVertices = 8;      // path vertices with a reflect/transmit entry each
+    // Path vertices whose next-event estimation has its own light-selection entries (beyond
+    // the paper, whose one map steers the first vertex, as 1 does).
+    int lightSelectionVertices = 1;
     float alpha = 0.5f;               // eq. (2); the paper's renderings use 0.5
+    // Beyond the paper: a world map mixes in only the part of its mass that samples credited
+    // (importance_map.h), with α scaled by that part's share of the decision's mass; the even
+    // rest (uniform start, floor, black pixels) is left to standard sampling, so a map with no
+    // evidence for a decision leaves it alone. False: the whole map with the paper's α.
+    bool alphaFollowsEvidence = true;
     // The share of a world-space map's mass spread evenly over its entries before
     // renormalising (§3.3: "a tiny value ... to avoid underflow"); world maps need no more,
     // since standard sampling explores with probability 1 − α.
