@@ -75,6 +75,8 @@ class Technique:
     samples_at: list[str] = field(default_factory=list)
     # JSON pointer -> value for this technique's renders, after the experiment's (`set`)
     overrides: dict[str, Any] = field(default_factory=dict)
+    # A fixed-spp technique's render times set equal-time budgets (matched_spp) unless false
+    equal_time: bool = True
 
     def integrator_for(self, spp: int) -> tuple[Integrator, int]:
         """The integrator a render of `spp` budget uses, and the pixel samples it takes."""
@@ -130,6 +132,8 @@ class Experiment:
     relmse_reject: float
     paper: list[PaperNumbers] = field(default_factory=list)
     thresholds: Thresholds | None = None
+    # "common": slopes are fitted over the runs in the time range every technique covers
+    slope_time_range: str = "all"
 
     @property
     def paper_name(self) -> str:
@@ -268,6 +272,9 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
             if not isinstance(_resolve(t["integrator"], pointer), int):
                 yield (json_pointer("techniques", name, "samples_at", i),
                        f"{pointer} must name an integer the integrator already has")
+        if "equal_time" in t and not (t.get("fixed_spp", False) or "samples_at" in t):
+            yield (json_pointer("techniques", name, "equal_time"),
+                   "applies only to a fixed-spp technique (whose times set equal-time budgets)")
     if not any(t.get("fixed_spp", False) or "samples_at" in t
                for t in doc["techniques"].values()):
         for name in PROFILES:
@@ -370,7 +377,8 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         overrides=doc.get("set", {}),
         techniques={name: Technique(name, t.get("label", name), t["integrator"],
                                     t.get("fixed_spp", False) or "samples_at" in t,
-                                    t.get("samples_at", []), t.get("set", {}))
+                                    t.get("samples_at", []), t.get("set", {}),
+                                    t.get("equal_time", True))
                     for name, t in doc["techniques"].items()},
         baseline=doc["baseline"],
         also_baseline=doc.get("also_baseline"),
@@ -380,6 +388,7 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         relmse_reject=float(doc.get("relmse_reject", 0.0)),
         paper=[PaperNumbers(**entry) for _, entry in _paper_entries(doc)],
         thresholds=_thresholds(doc["thresholds"]) if "thresholds" in doc else None,
+        slope_time_range=doc.get("slope_time_range", "all"),
     )
 
 

@@ -60,7 +60,7 @@ def matched_budgets(exp: Experiment, profile: Profile,
     groups = group_by_key(records)
     matched = []
     for name, technique in exp.techniques.items():
-        if not technique.fixed_spp:
+        if not technique.fixed_spp or not technique.equal_time:
             continue
         spp_of = {}
         for spp in profile.matched_spp:
@@ -219,17 +219,37 @@ def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
     return summary
 
 
+def common_time_range(runs: dict[str, list[RunRecord]]) -> tuple[float, float]:
+    """The render times every technique's runs cover: from the latest first run to the
+    earliest last run."""
+    covered = [(min(r.time for r in rs), max(r.time for r in rs)) for rs in runs.values() if rs]
+    low, high = max(c[0] for c in covered), min(c[1] for c in covered)
+    if not low < high:
+        raise HarnessFailure(f"the techniques' render times share no range ({low:g} s to "
+                             f"{high:g} s): give the time-capable techniques seconds budgets "
+                             "that span the fixed-spp techniques' times")
+    return low, high
+
+
 def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -> dict[str, Any]:
     """Least-squares slope of log(primary error) against log(spp) and log(time), over every
-    run of each technique (all seeds and budgets), from `metrics slope`. A render entered
-    twice (matched_duplicates) counts once."""
+    run of each technique (all seeds and budgets), or with `slope_time_range: common` over the
+    runs in the common time range, from `metrics slope`. A render entered twice
+    (matched_duplicates) counts once."""
+    runs = {t: [r for r in records if r.technique == t and r.duplicate_of is None]
+            for t in exp.techniques}
+    window = common_time_range(runs) if exp.slope_time_range == "common" else None
     out = {}
-    for technique in exp.techniques:
+    for technique, rs in runs.items():
+        if window:
+            rs = [r for r in rs if window[0] <= r.time <= window[1]]
         points = [{"spp": r.spp, "time": r.time, "error": r.metrics[exp.primary_metric]}
-                  for r in records if r.technique == technique and r.duplicate_of is None]
+                  for r in rs]
         if len({p["spp"] for p in points}) >= 2 and all(p["error"] and p["error"] > 0
                                                          for p in points):
             out[technique] = renders.slope(points, Path(scratch_dir) / f"{technique}.json")
+            if window:
+                out[technique]["time_range"] = list(window)
     return out
 
 
@@ -272,7 +292,8 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "techniques": {t.name: {"label": t.label, "integrator": t.integrator,
                                 "fixed_spp": t.fixed_spp,
                                 **({"samples_at": t.samples_at} if t.samples_at else {}),
-                                **({"set": t.overrides} if t.overrides else {})}
+                                **({"set": t.overrides} if t.overrides else {}),
+                                **({} if t.equal_time else {"equal_time": False})}
                        for t in exp.techniques.values()},
         "baseline": exp.baseline,
         **({"also_baseline": exp.also_baseline} if exp.also_baseline else {}),

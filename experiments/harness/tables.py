@@ -141,7 +141,7 @@ def _fmt(x: float | None, digits: int = 4) -> str:
     return "—" if x is None else f"{x:.{digits}g}"
 
 
-def _gain_text(g: stats.Gain | None) -> str:
+def gain_text(g: stats.Gain | None) -> str:
     return "—" if g is None else f"×{g.value:.3g} [{g.ci95[0]:.3g}, {g.ci95[1]:.3g}]"
 
 
@@ -151,8 +151,8 @@ def _comparison_cells(v: RowValues, also: bool) -> str:
     paper = "—" if p.value is None else f"{p.value:.4g} ({p.spp} spp)"
     paper_gain = "—" if p.gain is None else f"×{p.gain:.3g}"
     ours = "—" if v.mean is None else f"{_fmt(v.mean)} ± {_fmt(v.half_width, 2)}"
-    also_cell = f" {_gain_text(v.also_gain)} |" if also else ""
-    return f"{ours} | {paper} | {_gain_text(v.gain)} |{also_cell} {paper_gain} | {p.verdict} |"
+    also_cell = f" {gain_text(v.also_gain)} |" if also else ""
+    return f"{ours} | {paper} | {gain_text(v.gain)} |{also_cell} {paper_gain} | {p.verdict} |"
 
 
 def _has_also_baseline(docs: list[Results]) -> bool:
@@ -162,7 +162,7 @@ def _has_also_baseline(docs: list[Results]) -> bool:
 ALSO_HEAD = " gain over 2nd baseline (95 %) |"
 
 
-def _separator(head: str) -> str:
+def separator(head: str) -> str:
     """The Markdown row under `head`: one `---` per cell."""
     return "|" + "---|" * (head.count("|") - 1)
 
@@ -172,7 +172,7 @@ def _main_table(docs: list[Results]) -> list[str]:
     head = ("| figure | technique | budget | spp | time (s) | metric | ours (mean ± 95 %) | paper "
             "| gain over baseline (95 %) |" + (ALSO_HEAD if also else "") +
             " paper's gain | verdict |")
-    lines = [head, _separator(head)]
+    lines = [head, separator(head)]
     for doc in docs:
         for row in _rows(doc):
             v = _row_values(doc, row)
@@ -186,7 +186,7 @@ def _secondary_table(docs: list[Results]) -> list[str]:
     also = _has_also_baseline(docs)
     head = ("| figure | technique | budget | metric | ours (mean ± 95 %) | paper | gain over "
             "baseline (95 %) |" + (ALSO_HEAD if also else "") + " paper's gain | verdict |")
-    lines = [head, _separator(head)]
+    lines = [head, separator(head)]
     for doc in docs:
         for row in _rows(doc):
             for metric in doc["metrics"][1:]:
@@ -204,7 +204,10 @@ def _slope_table(docs: list[Results]) -> list[str]:
             a, b = s["vs_spp"], s.get("vs_time")
             time_cells = (f"{b['slope']:.3f} ± {b['slope_stderr']:.3f} | {b['r2']:.3f}" if b
                           else "— | —")
-            lines.append(f"| {figure_of(doc)} | {technique} | {METRIC_NAMES[doc['metrics'][0]]} | "
+            window = (f" (runs in {s['time_range'][0]:.3g}–{s['time_range'][1]:.3g} s)"
+                      if "time_range" in s else "")
+            lines.append(f"| {figure_of(doc)}{window} | {technique} | "
+                         f"{METRIC_NAMES[doc['metrics'][0]]} | "
                          f"{a['slope']:.3f} ± {a['slope_stderr']:.3f} | {a['r2']:.3f} | "
                          f"{time_cells} | {a['n']} |")
     return lines
@@ -244,7 +247,7 @@ def _cost_table(docs: list[Results]) -> list[str]:
             error = row.metrics[metric].mean if row.metrics[metric] else None
             n = _equivalent_baseline_spp(doc, error)
             lines.append(f"| {figure_of(doc)} | {t} | {spp} | ×{cost:.3g} | "
-                         f"{_gain_text(row.gain.get(metric))} | {_gain_text(equal_time)} | "
+                         f"{gain_text(row.gain.get(metric))} | {gain_text(equal_time)} | "
                          f"{'—' if n is None else f'{n:.4g} (×{n / spp:.3g})'} |")
     return lines
 

@@ -147,6 +147,8 @@ class BadConfigTest(unittest.TestCase):
              "/techniques/better/set/~1render~1seed", "only how the scene is estimated"),
             (lambda d: d["techniques"]["better"].update(set={"/render/max_depth": 3}),
              "/techniques/better/set/~1render~1max_depth", "only how the scene is estimated"),
+            (lambda d: d["techniques"]["better"].update(equal_time=False),
+             "/techniques/better/equal_time", "only to a fixed-spp technique"),
             (lambda d: d["techniques"]["better"].update(set=[]), "/techniques/better/set",
              "JSON pointer -> value"),
             (lambda d: d["techniques"].update({"bad name": {"integrator": {"type": "path"}}}),

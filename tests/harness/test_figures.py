@@ -1,12 +1,14 @@
 """The RIS fig. 1 script's exact densities of resampling: each integrates to 1, M = 2 and M = 8
 lie between p (M = 1) and ĝ normalised (M = ∞) where those differ most, and the streamed
-reservoir's histogram for M = 2 follows the M = 2 density."""
+reservoir's histogram for M = 2 follows the M = 2 density. TAIS's gain against image size,
+measured from the spread over seeds, finds a known ratio of noise levels."""
 import unittest
 
 import numpy as np
 
 import fixtures  # noqa: F401  (puts the harness on the path)
 from figures import ris_fig01_resampling as fig1
+from figures import tais_gain_vs_size
 
 
 class ResamplingDensityTest(unittest.TestCase):
@@ -40,3 +42,18 @@ class ResamplingDensityTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class SpreadOverSeedsTest(unittest.TestCase):
+    def test_the_gain_of_half_the_noise_is_two(self):
+        rng = np.random.default_rng(3)
+        mean = rng.uniform(0.5, 2.0, size=(32, 48, 3))
+        baseline = mean + rng.normal(0, 0.2, size=(5, 32, 48, 3))
+        tais = mean + rng.normal(0, 0.1, size=(5, 32, 48, 3))
+        gain, low, high = tais_gain_vs_size.gain_with_interval(baseline, tais)
+        self.assertLess(low, 2.0)
+        self.assertGreater(high, 2.0)
+        self.assertAlmostEqual(gain, 2.0, delta=0.05)
+        # the same noise: no gain
+        gain, low, high = tais_gain_vs_size.gain_with_interval(baseline, baseline)
+        self.assertEqual((gain, low, high), (1.0, 1.0, 1.0))

@@ -102,6 +102,27 @@ class MatchedBudgetsTest(unittest.TestCase):
                          [MatchedBudget("better", 4, 0.001), MatchedBudget("better", 16, 0.011)])
         self.assertEqual(experiment.matched_seconds([0.01234, 0.01236]), 0.012)
 
+    def test_a_technique_without_equal_time_sets_no_budget(self):
+        doc = valid()
+        doc["techniques"]["better"].update(fixed_spp=True, equal_time=False)
+        doc["techniques"]["other"] = {"integrator": {"type": "path"}, "fixed_spp": True}
+        doc["profiles"]["quick"].update(matched_spp=[4])
+        exp = load_config(doc)
+        records = [record(t, "spp", 4, s, 0.5, 1.0) for t in ("better", "other")
+                   for s in SEEDS]
+        self.assertEqual(experiment.matched_budgets(exp, exp.profiles["quick"], records),
+                         [MatchedBudget("other", 4, 0.5)])
+
+    def test_slopes_can_be_fitted_over_the_time_range_every_technique_covers(self):
+        runs = {"fixed": [record("fixed", "spp", 4, 0, 0.5, 1.0),
+                          record("fixed", "spp", 16, 0, 2.0, 0.5)],
+                "timed": [record("timed", "time", 1.0, 0, 1.0, 1.0),
+                          record("timed", "time", 4.0, 0, 4.0, 0.4)]}
+        self.assertEqual(experiment.common_time_range(runs), (1.0, 2.0))
+        runs["timed"] = [record("timed", "time", 3.0, 0, 3.0, 1.0)]
+        with self.assertRaisesRegex(HarnessFailure, "share no range"):
+            experiment.common_time_range(runs)
+
     def test_second_phase_renders_the_time_capable_techniques_interleaved(self):
         exp = fixed_config()
         records = fixed_records([0.003] * 5, [0.011] * 5)
