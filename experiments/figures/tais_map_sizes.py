@@ -9,7 +9,8 @@ from pathlib import Path
 from harness import paths, provenance, records, tables
 from harness.records import SPP, TechniqueBudget
 
-# (map, experiment, the integrator key of its size, the renderer's default, unit)
+# (map, experiment, the integrator key of its size, its default in the renderer (TaisSettings in
+# renderer/techniques/tais/tais_settings.h), unit)
 SWEEPS = [
     ("time", "fig05_time", "time_cells", 128, " cells"),
     ("scatter distance", "fig10_scatter_distance", "scatter_distance_cells", 128, " cells"),
@@ -41,9 +42,9 @@ def _rows(doc: records.Results, sweep: tuple) -> list[str]:
     rows = []
     for technique, size in sorted(sizes.items(), key=lambda item: item[1]):
         entry = entries.get(TechniqueBudget(technique, SPP, spp))
-        if entry is None:
+        m = entry.metrics.get(metric) if entry else None
+        if m is None:
             continue
-        m = entry.metrics[metric]
         gain = (entry.gain or {}).get(metric)
         default_mark = " (default)" if size == default else ""
         rows.append(f"| {map_label} | {figure} | {size}{unit}{default_mark} | {spp} | "

@@ -275,13 +275,13 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
         if "equal_time" in t and not (t.get("fixed_spp", False) or "samples_at" in t):
             yield (json_pointer("techniques", name, "equal_time"),
                    "applies only to a fixed-spp technique (whose times set equal-time budgets)")
-    if not any(t.get("fixed_spp", False) or "samples_at" in t
+    if not any((t.get("fixed_spp", False) or "samples_at" in t) and t.get("equal_time", True)
                for t in doc["techniques"].values()):
         for name in PROFILES:
             if "matched_spp" in doc["profiles"][name]:
                 yield (json_pointer("profiles", name, "matched_spp"),
-                       "needs a technique with \"fixed_spp\": true (the budgets are the render "
-                       "times of such techniques)")
+                       "needs a technique with \"fixed_spp\": true and equal time (the budgets "
+                       "are the render times of such techniques)")
     for pointer, entry in _paper_entries(doc):
         yield from _paper_disagreements(doc, pointer, entry)
     if "thresholds" in doc:

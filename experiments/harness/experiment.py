@@ -219,16 +219,28 @@ def summarise(exp: Experiment, records: list[RunRecord]) -> list[SummaryEntry]:
     return summary
 
 
-def common_time_range(runs: dict[str, list[RunRecord]]) -> tuple[float, float]:
-    """The render times every technique's runs cover: from the latest first run to the
-    earliest last run."""
-    covered = [(min(r.time for r in rs), max(r.time for r in rs)) for rs in runs.values() if rs]
+def budget_times(runs: list[RunRecord]) -> dict[tuple[str, float], float]:
+    """The mean render time of each budget (kind, budget) of one technique's runs."""
+    times: dict[tuple[str, float], list[float]] = {}
+    for r in runs:
+        times.setdefault((r.kind, r.budget), []).append(r.time)
+    return {budget: math.fsum(t) / len(t) for budget, t in times.items()}
+
+
+def common_time_range(runs: dict[str, list[RunRecord]]) -> tuple[float, float] | None:
+    """The render times every technique covers, by the mean times of its budgets: from the
+    latest first budget to the earliest last one; None when they share no range."""
+    covered = [(min(t.values()), max(t.values()))
+               for t in (budget_times(rs) for rs in runs.values() if rs)]
     low, high = max(c[0] for c in covered), min(c[1] for c in covered)
-    if not low < high:
-        raise HarnessFailure(f"the techniques' render times share no range ({low:g} s to "
-                             f"{high:g} s): give the time-capable techniques seconds budgets "
-                             "that span the fixed-spp techniques' times")
-    return low, high
+    return (low, high) if low < high else None
+
+
+def in_time_range(runs: list[RunRecord], window: tuple[float, float]) -> list[RunRecord]:
+    """The runs of the budgets whose mean time lies in `window`: whole budgets, every seed, so
+    that a window's edge does not keep a budget's fast seeds and drop its slow ones."""
+    times = budget_times(runs)
+    return [r for r in runs if window[0] <= times[(r.kind, r.budget)] <= window[1]]
 
 
 def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -> dict[str, Any]:
@@ -238,18 +250,22 @@ def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -
     (matched_duplicates) counts once."""
     runs = {t: [r for r in records if r.technique == t and r.duplicate_of is None]
             for t in exp.techniques}
-    window = common_time_range(runs) if exp.slope_time_range == "common" else None
+    common = exp.slope_time_range == "common"
+    window = common_time_range(runs) if common else None
+    if common and window is None:
+        print(f"[{exp.id}] warning: the techniques' render times share no range; slopes over "
+              "every run", file=sys.stderr)
     out = {}
     for technique, rs in runs.items():
         if window:
-            rs = [r for r in rs if window[0] <= r.time <= window[1]]
+            rs = in_time_range(rs, window)
         points = [{"spp": r.spp, "time": r.time, "error": r.metrics[exp.primary_metric]}
                   for r in rs]
         if len({p["spp"] for p in points}) >= 2 and all(p["error"] and p["error"] > 0
                                                          for p in points):
             out[technique] = renders.slope(points, Path(scratch_dir) / f"{technique}.json")
-            if window:
-                out[technique]["time_range"] = list(window)
+            if common:
+                out[technique]["time_range"] = list(window) if window else None
     return out
 
 

@@ -204,8 +204,9 @@ def _slope_table(docs: list[Results]) -> list[str]:
             a, b = s["vs_spp"], s.get("vs_time")
             time_cells = (f"{b['slope']:.3f} ± {b['slope_stderr']:.3f} | {b['r2']:.3f}" if b
                           else "— | —")
-            window = (f" (runs in {s['time_range'][0]:.3g}–{s['time_range'][1]:.3g} s)"
-                      if "time_range" in s else "")
+            window = ("" if "time_range" not in s else " (no common time range: every run)"
+                      if s["time_range"] is None else
+                      f" (runs in {s['time_range'][0]:.3g}–{s['time_range'][1]:.3g} s)")
             lines.append(f"| {figure_of(doc)}{window} | {technique} | "
                          f"{METRIC_NAMES[doc['metrics'][0]]} | "
                          f"{a['slope']:.3f} ± {a['slope_stderr']:.3f} | {a['r2']:.3f} | "

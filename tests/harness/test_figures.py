@@ -40,10 +40,6 @@ class ResamplingDensityTest(unittest.TestCase):
         self.assertLess(np.abs(z).max(), 3.8)
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class SpreadOverSeedsTest(unittest.TestCase):
     def test_the_gain_of_half_the_noise_is_two(self):
         rng = np.random.default_rng(3)
@@ -57,3 +53,7 @@ class SpreadOverSeedsTest(unittest.TestCase):
         # the same noise: no gain
         gain, low, high = tais_gain_vs_size.gain_with_interval(baseline, baseline)
         self.assertEqual((gain, low, high), (1.0, 1.0, 1.0))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -27,7 +27,7 @@ using tais::PixelMaps;
 using tais::TaisSettings;
 
 constexpr int kSamples = 200000;
-const Chi2Family kChi2(9);
+const Chi2Family kChi2(10);
 // The share of each test map's mass, for the decision tested, that samples credited, and the
 // α it gives.
 constexpr double kEvidence = 0.6;
@@ -225,7 +225,7 @@ std::vector<double> selectLights(const PixelMaps& maps, const TaisSettings& s, u
             break;
         }
         observed[size_t(light->index())] += 1;
-        wrongPdfs += std::abs(pdf - claimed[size_t(light->index())]) > 1e-6;
+        wrongPdfs += !(std::abs(pdf - claimed[size_t(light->index())]) <= 1e-6);  // NaN: wrong
     }
     EXPECT_EQ(wrongPdfs, 0) << "at vertex " << vertex;
     return observed;
@@ -258,8 +258,9 @@ TEST(TaisGuide, LightSelectionMixesTheMapWithTheSelector) {
 }
 
 // Beyond the paper: with light_selection_vertices = 3, vertex 2 chooses from its own entries
-// (here preferring light 1), mixed with the selector by its own evidence; vertex 3 is past the
-// map and uses the selector alone.
+// (here preferring light 1), mixed with the selector by its own credited share; with the
+// paper's constant α, from its whole entries (credited and uniform); vertex 3 is past the map
+// and uses the selector alone.
 TEST(TaisGuide, DeeperVerticesSelectLightsFromTheirOwnEntries) {
     TaisSettings s = settingsWith(tais::MapKind::LightSelection);
     s.lightSelectionVertices = 3;
@@ -277,6 +278,16 @@ TEST(TaisGuide, DeeperVerticesSelectLightsFromTheirOwnEntries) {
         chi2GoodnessOfFit(observed,
                           times(kSamples, mixture({1 / 4.0001, 0.0001 / 4.0001, 3 / 4.0001}))),
         "vertex 0's entries");
+    TaisSettings paper = s;
+    paper.alphaFollowsEvidence = false;
+    std::vector<double> whole;
+    for (int light = 0; light < 3; ++light)
+        whole.push_back(paper.alpha * maps.lightSelection->weight(6 + light) /
+                            maps.lightSelection->sliceTotal(6, 3) +
+                        (1 - paper.alpha) / 3.0);
+    kChi2.expectFits(
+        chi2GoodnessOfFit(selectLights(maps, paper, 2, whole, 19), times(kSamples, whole)),
+        "vertex 2, the paper's constant α and whole entries");
     const std::vector<double> selector{1 / 3.0, 1 / 3.0, 1 / 3.0};
     kChi2.expectFits(
         chi2GoodnessOfFit(selectLights(maps, s, 3, selector, 17), times(kSamples, selector)),
@@ -320,9 +331,16 @@ TEST(TaisGuide, ADecisionWithoutCreditIsStandardSampling) {
             BsdfSample bs;
             ASSERT_TRUE(guide.sampleBsdf(0, glass, ctx, Frame(), wo, Rgb(0.0f), &bs));
             wrongPdfs +=
-                std::abs(bs.pdf - ((bs.lobe & kReflection) ? reflect : 1 - reflect)) > 1e-6f;
+                !(std::abs(bs.pdf - ((bs.lobe & kReflection) ? reflect : 1 - reflect)) <= 1e-6f);
             tais::MapGuide direction(scene, sample, maps, s, invertible);
-            if (!direction.sampleBsdf(0, lambert, ctx, frame, wo, Rgb(0.0f), &bs)) ++below;
+            if (!direction.sampleBsdf(0, lambert, ctx, frame, wo, Rgb(0.0f), &bs)) {
+                ++below;
+                continue;
+            }
+            // Without credit the direction's density is the material's own, its weight finite.
+            if (follows)
+                wrongPdfs += !(std::abs(bs.pdf - lambert.pdf(ctx, wo, bs.wi)) <= 1e-5f * bs.pdf) ||
+                             !bs.weight.isFinite();
         }
         EXPECT_EQ(wrongPdfs, 0) << "alpha_follows_evidence " << follows;
         if (follows) {

@@ -22,9 +22,9 @@ namespace {
 using tais::InvertedMap1D;
 using tais::InvertedMap2D;
 
-// Every χ² run in this file: the 1-D warp without and with a uniform part, discrete selection,
-// the 2-D warp of both parts, and two negative controls.
-constexpr int kRuns = 7;
+// Every χ² run in this file: the 1-D warp without and with a uniform part, discrete draws of
+// both parts, the 2-D warp of both parts, and two negative controls.
+constexpr int kRuns = 8;
 const Chi2Family kChi2(kRuns);
 constexpr int kSamples = 1000000;
 
@@ -81,19 +81,27 @@ TEST(InvertedMap1D, NegativeControlRejectsTheUniformDensity) {
     kChi2.expectRejects(warp1DChi2(map, std::vector<double>(8, 1.0 / 8), 2), "1-D vs uniform");
 }
 
-TEST(InvertedMap1D, DiscreteSelectionFollowsTheWeights) {
-    const InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
-    const std::vector<double> p = probabilities(kWeights1D);
-    std::vector<double> observed(p.size(), 0.0), expected(p.size());
-    for (int i = 0; i < kSamples; ++i) {
-        float probability;
-        const int cell = map.sampleCell(uniform(3, i), &probability);
-        EXPECT_FLOAT_EQ(probability, float(p[cell]));
-        observed[cell] += 1;
+// Discrete draws from a slice of the cells (one path vertex's entries), of the whole map and of
+// its credited part alone: each follows its weights, and a cell without credit is never drawn
+// from the credited part.
+TEST(InvertedMap1D, DiscreteDrawsFromASliceFollowEachPart) {
+    InvertedMap1D map = InvertedMap1D::fromWeights(kWeights1D);
+    map.accumulateUniform(0.5);
+    constexpr int kFirst = 2, kCount = 4;  // credited 0, 1, 7, 0.25
+    for (const auto part : {tais::MapPart::Whole, tais::MapPart::Credited}) {
+        std::vector<double> observed(kCount, 0.0), expected(kCount);
+        for (int i = 0; i < kSamples; ++i)
+            observed[size_t(map.sampleCellIn(kFirst, kCount, uniform(3, i), part) - kFirst)] += 1;
+        for (int c = 0; c < kCount; ++c)
+            expected[size_t(c)] =
+                kSamples * map.weight(kFirst + c, part) / map.sliceTotal(kFirst, kCount, part);
+        const bool whole = part == tais::MapPart::Whole;
+        kChi2.expectFits(chi2GoodnessOfFit(observed, expected),
+                         whole ? "discrete slice, whole map" : "discrete slice, credited part");
+        if (!whole) {
+            EXPECT_EQ(observed[0], 0.0);
+        }
     }
-    for (size_t c = 0; c < p.size(); ++c)
-        expected[c] = kSamples * p[c];
-    kChi2.expectFits(chi2GoodnessOfFit(observed, expected), "discrete selection");
 }
 
 TEST(InvertedMap1D, WarpAndCdfRoundTrip) {
@@ -211,7 +219,7 @@ TEST(TemporaryMaps, SplatIntoTheNeighbourhood) {
     const double total = 2 * 2 + 3 * 1 + 4;
     const double expected[8] = {2, 2, 0, 1, 1, 1, 0, 4};
     for (int c = 0; c < 8; ++c)
-        EXPECT_NEAR(m.probability(c), expected[c] / total, 1e-7) << "cell " << c;
+        EXPECT_NEAR(m.weight(c) / m.total(), expected[c] / total, 1e-12) << "cell " << c;
 
     tais::TemporaryMap2D square(4, 4);
     square.splat(Vec2(0.99f, 0.3f), 1.0);  // cell (3, 1): x 2..3, y 0..2
@@ -303,7 +311,7 @@ TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
     tais::MapRows<InvertedMap1D> rows(kWidth, InvertedMap1D(4));
     InvertedMap1D start(4);
     EXPECT_EQ(rows.neighbourSum(0, 0, &start), 1);  // no neighbour: the initial map
-    EXPECT_NEAR(start.probability(2), 0.25, 1e-12);
+    EXPECT_NEAR(start.weight(2) / start.total(), 0.25, 1e-12);
     for (int x = 0; x < kWidth; ++x) {  // row 0 runs left to right
         InvertedMap1D m = mapOf(x, 0);
         rows.store(x, &m);

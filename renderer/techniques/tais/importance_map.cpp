@@ -67,32 +67,29 @@ void InvertedMap1D::scale(double factor) {
 
 Inversion invertRunningSums(std::span<const double> sums, float u, double perCell) {
     const int cells = int(sums.size()) - 1;
-    auto f = [&](int i) { return sums[size_t(i)] + i * perCell; };
-    const double target = f(0) + double(u) * (f(cells) - f(0));
-    // The first running sum above the target ends the cell: zero-weight cells are skipped.
+    // Offsets from the slice's start, so that a slice far along a long map keeps its
+    // resolution: g(i) = f(i) − f(0), non-decreasing from 0 to the slice's mass.
+    auto g = [&](int i) { return (sums[size_t(i)] - sums[0]) + i * perCell; };
+    const double target = double(u) * g(cells);  // < g(cells) for u < 1
+    // The first g above the target ends the cell: g(cell) ≤ target < g(cell + 1), so the cell
+    // has positive weight and zero-weight cells are never drawn.
     int lo = 0, hi = cells + 1;
     while (lo < hi) {
         const int mid = (lo + hi) / 2;
-        if (f(mid) > target)
+        if (g(mid) > target)
             hi = mid;
         else
             lo = mid + 1;
     }
     const int cell = std::clamp(lo - 1, 0, cells - 1);
-    const double w = f(cell + 1) - f(cell);
-    return {cell, w > 0 ? std::clamp((target - f(cell)) / w, 0.0, 1.0) : 0.0};
+    const double w = g(cell + 1) - g(cell);
+    return {cell, w > 0 ? std::clamp((target - g(cell)) / w, 0.0, 1.0) : 0.0};
 }
 
 float InvertedMap1D::warp(float u, float* pdf) const {
     const Inversion inv = invert(u);
     *pdf = float(cells() * weight(inv.cell) / total());
     return positionInCell(inv.cell, inv.fraction, cells());
-}
-
-int InvertedMap1D::sampleCell(float u, float* probability) const {
-    const int cell = invert(u).cell;
-    *probability = this->probability(cell);
-    return cell;
 }
 
 float InvertedMap1D::pdf(float uPrime) const {

@@ -14,9 +14,10 @@
 //
 // A map's mass has two parts, kept apart: the part samples put there (`credited`, the running
 // sums) and a part spread evenly over every cell (`uniform`, one number): the uniform start,
-// the constant of line 23, the maps of pixels whose samples were all black. The map's density
-// is their sum (`MapPart::Whole`, the paper's); world maps can also be sampled from their
-// credited part alone (MapPart::Credited, TaisSettings::alphaFollowsEvidence).
+// the constant of line 23, and the finished map of every pixel that gave this map no credit
+// (its paths never made the decision, or carried no light past it). The map's density is their
+// sum (`MapPart::Whole`, the paper's); world maps can also be sampled from their credited part
+// alone (MapPart::Credited, TaisSettings::alphaFollowsEvidence).
 //
 // A preimage-space map warps uniform coordinates u to u' = F⁻¹(u) before standard importance
 // sampling, with density p_map(u') (TAIS: p_tot = p_map · p_is).
@@ -78,17 +79,15 @@ class InvertedMap1D {
     // Preimage warp: u ∈ [0, 1) → u' ∈ [0, 1) by inverting the piecewise-linear CDF, with the
     // density of u' in *pdf (cells · weight / total).
     float warp(float u, float* pdf) const;
-    // Discrete maps: a cell with probability weight / total, and that probability.
-    int sampleCell(float u, float* probability) const;
     // Density of the warp at u' ∈ [0, 1].
     float pdf(float uPrime) const;
-    // The CDF at u' ∈ [0, 1]: the inverse of warp().
+    // The CDF at u' ∈ [0, 1]: the inverse of warp() (its tests check warp() against it).
     float cdf(float uPrime) const;
-    float probability(int cell) const { return float(weight(cell) / total()); }
 
-    // Discrete maps of several decisions, each on its own slice of cells [first, first + count)
-    // (bifurcation and light selection per path vertex): the slice's mass, and a cell of the
-    // slice with probability weight / slice total (which must be positive).
+    // Discrete maps, of one decision or of several, each on its own slice of cells
+    // [first, first + count) (bifurcation and light selection per path vertex): the slice's
+    // mass, and a cell of the slice with probability weight / slice total (which must be
+    // positive; a cell of weight 0 is never drawn).
     double sliceTotal(int first, int count, MapPart part = MapPart::Whole) const {
         return sums_[first + count] - sums_[first] + count * uniformPerCell(part);
     }

@@ -132,7 +132,9 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
 }
 
 void MapGuide::lightContribution(uint32_t /*vertex*/, const Rgb& contribution) {
-    // The records of the light sample just drawn (none when standard sampling drew it).
+    // The records of the light sample just drawn at this vertex (none when standard sampling
+    // drew it): the next-event estimator adds each sample's contribution right after drawing
+    // it, one sample per vertex.
     for (int i = recordCount_ - lightRecords_; i < recordCount_; ++i)
         records_[i].amount = contribution;
     lightRecords_ = 0;

@@ -13,11 +13,11 @@
 // maps choose with probability α from the map and otherwise by standard sampling, with the
 // mixture density of eq. (2) in the sample's weight and in every MIS weight that involves the
 // decision, so the estimator stays unbiased. By default they draw from the map's credited part
-// only, with α scaled by its share (TaisSettings::alphaFollowsEvidence; fixed before the
-// pixel's samples, as the maps are). A
+// only, with α scaled by that part's share of the decision's mass
+// (TaisSettings::alphaFollowsEvidence; fixed before the pixel's samples, as the maps are). A
 // point-on-light map warps only lights that can invert their sampling (Light::canInvertSample),
-// since MIS must find the map density of a point that BSDF sampling hit; other lights are sampled
-// as usual.
+// since MIS must find the map density of a point that BSDF sampling hit; other lights are
+// sampled as usual.
 //
 // The guide remembers where each decision fell; splat() then adds the sample to the pixel's
 // temporary maps (line 19) at those coordinates.
@@ -65,8 +65,8 @@ class MapGuide : public StandardSampling {
     void splat(const Rgb& value, TemporaryMaps& maps) const;
 
     // The most decisions one path records: bifurcation and light-selection vertices (one light
-    // sample per vertex), a point on a light, and the time, lens, scatter-distance and two
-    // scatter-direction maps.
+    // sample per vertex: TaisIntegrator's next-event estimator takes one), a point on a light,
+    // and the time, lens, scatter-distance and two scatter-direction maps.
     static constexpr int kMaxBifurcationVertices = 32;
     static constexpr int kMaxLightSelectionVertices = 8;
     static constexpr int kMaxRecords = kMaxBifurcationVertices + kMaxLightSelectionVertices + 6;
@@ -87,12 +87,13 @@ class MapGuide : public StandardSampling {
     bool steersSelection(uint32_t vertex) const {
         return maps_.lightSelection && int(vertex) < settings_.lightSelectionVertices;
     }
-    bool warpsPoints(uint32_t vertex) const { return vertex == 0 && maps_.pointOnLight; }
+    bool steersPointOnLight(uint32_t vertex) const { return vertex == 0 && maps_.pointOnLight; }
     bool guidesLights(uint32_t vertex) const {
-        return steersSelection(vertex) || warpsPoints(vertex);
+        return steersSelection(vertex) || steersPointOnLight(vertex);
     }
+    // Whether this light's point at `vertex` is warped: steered there, and invertible.
     bool warpsPointOn(const Light& light, uint32_t vertex) const {
-        return warpsPoints(vertex) && invertible_[size_t(light.index())];
+        return steersPointOnLight(vertex) && invertible_[size_t(light.index())];
     }
     // Eq. (2) for one decision of a world map: the part of the map drawn from and α. With the
     // evidence weighting (the default), the credited part, and α times that part's share of

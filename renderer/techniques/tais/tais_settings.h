@@ -59,13 +59,16 @@ struct TaisSettings {
     int lightSelectionVertices = 1;
     float alpha = 0.5f;               // eq. (2); the paper's renderings use 0.5
     // Beyond the paper: a world map mixes in only the part of its mass that samples credited
-    // (importance_map.h), with α scaled by that part's share of the decision's mass; the even
-    // rest (uniform start, floor, black pixels) is left to standard sampling, so a map with no
-    // evidence for a decision leaves it alone. False: the whole map with the paper's α.
+    // (importance_map.h), with α scaled by that part's share of the decision's mass (a share of
+    // mass, not a count of samples); the even rest (the uniform start, the floor, the maps of
+    // pixels that gave this one no credit) is left to standard sampling, so a decision no
+    // credited sample has reached is standard sampling's. False: the whole map with the
+    // paper's α.
     bool alphaFollowsEvidence = true;
     // The share of a world-space map's mass spread evenly over its entries before
     // renormalising (§3.3: "a tiny value ... to avoid underflow"); world maps need no more,
-    // since standard sampling explores with probability 1 − α.
+    // since standard sampling explores with probability 1 − α. With alphaFollowsEvidence the
+    // floor is never drawn from: it only lowers α by about this share.
     double worldFloorShare = 1e-3;
     Credit credit = Credit::Downstream;
     bool contributionFilter = false;  // eq. (4), biased: reported separately
