@@ -285,49 +285,59 @@ TEST(TemporaryMaps, SamplesAreCreditedTheConstantAndBlackPixelsAreUniform) {
     EXPECT_EQ(map2.weight(3, 3, tais::MapPart::Credited), 0.0);
 }
 
-// Fig. 3 as we read it: x−2 … x+2 in the row above and the two previous pixels of this row in
-// its scan direction, clipped at the edges; none for the band's first pixel.
-TEST(Scan, RenderedNeighboursAreSevenAwayFromTheEdges) {
-    using P = tais::PixelCoord;
-    EXPECT_TRUE(tais::renderedNeighbours(0, 0, 8).empty());
-    EXPECT_EQ(tais::renderedNeighbours(3, 0, 8), (std::vector<P>{{2, 0}, {1, 0}}));
-    // Row 1 runs right to left: its rendered pixels are to the right.
-    EXPECT_EQ(tais::renderedNeighbours(4, 1, 8),
-              (std::vector<P>{{2, 0}, {3, 0}, {4, 0}, {5, 0}, {6, 0}, {5, 1}, {6, 1}}));
-    EXPECT_EQ(tais::renderedNeighbours(7, 1, 8), (std::vector<P>{{5, 0}, {6, 0}, {7, 0}}));
-    EXPECT_EQ(tais::renderedNeighbours(1, 2, 8),
-              (std::vector<P>{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {0, 2}}));
+// Fig. 3 as we read it, the definition MapRows is checked against: x−2 … x+2 in the row above
+// and the two previous pixels of this row in its scan direction (even rows run left to right),
+// clipped at the edges; none for the band's first pixel.
+struct Pixel {
+    int x, y;
+};
+std::vector<Pixel> renderedNeighbours(int x, int row, int width) {
+    std::vector<Pixel> neighbours;
+    if (row > 0)
+        for (int dx = -2; dx <= 2; ++dx)
+            if (x + dx >= 0 && x + dx < width) neighbours.push_back({x + dx, row - 1});
+    const int back = row % 2 == 0 ? -1 : 1;
+    for (int k = 1; k <= 2; ++k)
+        if (x + back * k >= 0 && x + back * k < width) neighbours.push_back({x + back * k, row});
+    return neighbours;
 }
 
-// Propagation through two stored rows: a pixel starts from the average of its rendered
-// neighbours' maps, computed here by hand.
-TEST(Scan, MapRowsPropagateTheNeighbourAverage) {
-    constexpr int kWidth = 4;
+// Propagation through two stored rows: each pixel of a serpentine scan starts from the sum of
+// its rendered neighbours' maps, the five above kept as a running sum along the row (and
+// summed afresh after a jump), equal to the direct sum.
+TEST(Scan, MapRowsSumTheRenderedNeighbours) {
+    constexpr int kWidth = 9, kRows = 4;
     auto mapOf = [](int x, int y) {
-        std::vector<double> w = {1, 1, 1, 1};
-        w[(x + y) % 4] += 10.0 * (x + 1) + y;
-        return InvertedMap1D::fromWeights(w);
+        std::vector<double> w = {1e-3, 1, 0, 1};
+        w[size_t((x + y) % 4)] += 10.0 * (x + 1) + y;
+        InvertedMap1D map = InvertedMap1D::fromWeights(w);
+        map.accumulateUniform(0.1 * y);
+        return map;
     };
     tais::MapRows<InvertedMap1D> rows(kWidth, InvertedMap1D(4));
     InvertedMap1D start(4);
     EXPECT_EQ(rows.neighbourSum(0, 0, &start), 1);  // no neighbour: the initial map
     EXPECT_NEAR(start.weight(2) / start.total(), 0.25, 1e-12);
-    for (int x = 0; x < kWidth; ++x) {  // row 0 runs left to right
-        InvertedMap1D m = mapOf(x, 0);
-        rows.store(x, &m);
-    }
-    rows.nextRow();
-    InvertedMap1D m3 = mapOf(3, 1), m2 = mapOf(2, 1);
-    rows.store(3, &m3);  // row 1 runs right to left
-    rows.store(2, &m2);
-    // Pixel (1, 1): x−2 … x+2 of row 0 clipped to 0 … 3, and (2, 1), (3, 1).
-    const tais::PixelCoord expected[] = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {2, 1}, {3, 1}};
-    ASSERT_EQ(rows.neighbourSum(1, 1, &start), 6);
-    for (int c = 0; c < 4; ++c) {
-        double sum = 0;
-        for (const auto& n : expected)
-            sum += mapOf(n.x, n.y).weight(c);
-        EXPECT_NEAR(start.weight(c), sum, 1e-12) << "cell " << c;
+    for (int y = 0; y < kRows; ++y) {
+        if (y > 0) rows.nextRow();
+        for (int i = 0; i < kWidth; ++i) {
+            const int x = y % 2 == 0 ? i : kWidth - 1 - i;
+            if (y == 2 && i == 4) {  // a call out of order: the window is summed afresh
+                InvertedMap1D other(4);
+                rows.neighbourSum(0, y, &other);
+            }
+            const std::vector<Pixel> expected = renderedNeighbours(x, y, kWidth);
+            const int count = rows.neighbourSum(x, y, &start);
+            EXPECT_EQ(count, std::max<int>(int(expected.size()), 1)) << x << ", " << y;
+            for (int c = 0; c < 4 && !expected.empty(); ++c) {
+                double sum = 0;
+                for (const Pixel& n : expected)
+                    sum += mapOf(n.x, n.y).weight(c);
+                EXPECT_NEAR(start.weight(c), sum, 1e-12 * sum) << x << ", " << y << ", cell " << c;
+            }
+            InvertedMap1D m = mapOf(x, y);
+            rows.store(x, &m);
+        }
     }
 }
 

@@ -9,22 +9,21 @@
 // pixels already has neighbours above it.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 #include <vector>
 
 namespace rr::tais {
 
-struct PixelCoord {
-    int x = 0, y = 0;
-    bool operator==(const PixelCoord&) const = default;
-};
-
-// The already-rendered neighbours of pixel x in row `rowInBand` of a band (see above).
-std::vector<PixelCoord> renderedNeighbours(int x, int rowInBand, int width);
+// The scan direction of a band's row (render/scan_bands.h): +1 for its even rows, −1 for its
+// odd ones.
+inline int scanDirection(int rowInBand) {
+    return rowInBand % 2 == 0 ? 1 : -1;
+}
 
 // The maps of two rows of a band: the row being rendered and the one above it. `Maps` is a
-// pixel's set of importance maps: copyable, with accumulate(other) and scale(factor).
+// pixel's set of importance maps: copyable, with accumulate(other, scale).
 template <class Maps>
 class MapRows {
   public:
@@ -34,35 +33,71 @@ class MapRows {
         : width_(width),
           initial_(std::move(initial)),
           above_(width, initial_),
-          current_(width, initial_) {}
+          current_(width, initial_),
+          window_(initial_) {}
 
     // Fig. 3: the sum of the maps of the pixel's rendered neighbours (the initial maps for
-    // the band's first pixel) into *out; returns how many were summed (at least 1).
-    int neighbourSum(int x, int rowInBand, Maps* out) const {
-        const std::vector<PixelCoord> neighbours = renderedNeighbours(x, rowInBand, width_);
-        if (neighbours.empty()) {
-            *out = initial_;
-            return 1;
+    // the band's first pixel) into *out; returns how many were summed (at least 1). The five
+    // pixels above are a window that moves one pixel per call along the row: it is kept as a
+    // running sum, the pixel entering added and the one leaving subtracted, and summed afresh
+    // where the scan jumps (a new row, or a call out of order).
+    int neighbourSum(int x, int rowInBand, Maps* out) {
+        int count = 0;
+        if (rowInBand > 0) {
+            count = slideWindow(x, rowInBand);
+            *out = window_;
         }
-        *out = mapsAt(neighbours.front(), rowInBand);
-        for (size_t i = 1; i < neighbours.size(); ++i)
-            out->accumulate(mapsAt(neighbours[i], rowInBand));
-        return int(neighbours.size());
+        const int back = -scanDirection(rowInBand);  // towards the pixels already rendered
+        for (int k = 1; k <= 2; ++k) {
+            const int left = x + back * k;
+            if (!inside(left)) continue;
+            if (count++ == 0)
+                *out = current_[size_t(left)];
+            else
+                out->accumulate(current_[size_t(left)]);
+        }
+        if (count == 0) *out = initial_;
+        return std::max(count, 1);
     }
     // The pixel's maps once it is rendered (Algorithm 1, line 24). They are swapped into the
     // row, so *maps is left holding stale maps whose memory the next pixel reuses.
     void store(int x, Maps* maps) { std::swap(current_[size_t(x)], *maps); }
     // Moves on to the next row: the current row becomes the row above.
-    void nextRow() { above_.swap(current_); }
+    void nextRow() {
+        above_.swap(current_);
+        windowRow_ = -1;
+    }
 
   private:
-    const Maps& mapsAt(const PixelCoord& p, int rowInBand) const {
-        return (p.y == rowInBand ? current_ : above_)[size_t(p.x)];
+    bool inside(int x) const { return x >= 0 && x < width_; }
+
+    // window_ = the maps of pixels x − 2 … x + 2 of the row above (clipped); returns how many.
+    int slideWindow(int x, int rowInBand) {
+        const int d = scanDirection(rowInBand);
+        if (rowInBand == windowRow_ && x == windowX_ + d) {
+            if (inside(x + 2 * d)) window_.accumulate(above_[size_t(x + 2 * d)]);
+            if (inside(x - 3 * d)) window_.accumulate(above_[size_t(x - 3 * d)], -1);
+        } else {
+            bool first = true;
+            for (int dx = -2; dx <= 2; ++dx) {
+                if (!inside(x + dx)) continue;
+                if (first)
+                    window_ = above_[size_t(x + dx)];
+                else
+                    window_.accumulate(above_[size_t(x + dx)]);
+                first = false;
+            }
+        }
+        windowRow_ = rowInBand;
+        windowX_ = x;
+        return std::min(x + 2, width_ - 1) - std::max(x - 2, 0) + 1;
     }
 
     int width_;
     Maps initial_;
     std::vector<Maps> above_, current_;
+    Maps window_;  // the running sum over the row above (slideWindow)
+    int windowRow_ = -1, windowX_ = 0;
 };
 
 }  // namespace rr::tais
