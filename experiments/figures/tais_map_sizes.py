@@ -9,15 +9,15 @@ from pathlib import Path
 from harness import paths, provenance, records, tables
 from harness.records import SPP, TechniqueBudget
 
-# (map, experiment, the integrator key of its size, its default in the renderer (TaisSettings in
-# renderer/techniques/tais/tais_settings.h), unit)
+# (map name in the configs, experiment, the integrator key of its size, its default in the
+# renderer (TaisSettings in renderer/techniques/tais/tais_settings.h), unit)
 SWEEPS = [
     ("time", "fig05_time", "time_cells", 128, " cells"),
-    ("scatter distance", "fig10_scatter_distance", "scatter_distance_cells", 128, " cells"),
+    ("scatter_distance", "fig10_scatter_distance", "scatter_distance_cells", 128, " cells"),
     ("lens", "fig06_lens", "lens_size", 32, "² cells"),
-    ("point on light", "fig11_point_on_light", "point_on_light_size", 32, "² cells"),
-    ("scatter direction", "fig04_map_size", "scatter_direction_size", 32, "² cells"),
-    ("scatter direction", "fig07_scatter_direction", "scatter_direction_size", 32, "² cells"),
+    ("point_on_light", "fig11_point_on_light", "point_on_light_size", 32, "² cells"),
+    ("scatter_direction", "fig04_map_size", "scatter_direction_size", 32, "² cells"),
+    ("scatter_direction", "fig07_scatter_direction", "scatter_direction_size", 32, "² cells"),
 ]
 
 
@@ -34,11 +34,11 @@ def _sizes(doc: records.Results, map_name: str, key: str, default: int) -> dict[
 
 
 def _rows(doc: records.Results, sweep: tuple) -> list[str]:
-    map_label, figure, key, default, unit = sweep
+    map_name, figure, key, default, unit = sweep
     metric = doc["metrics"][0]
     spp = doc["table"]["spp"]
     entries = records.index_by_key(records.read_summary(doc))
-    sizes = _sizes(doc, map_label.replace(" ", "_"), key, default)
+    sizes = _sizes(doc, map_name, key, default)
     rows = []
     for technique, size in sorted(sizes.items(), key=lambda item: item[1]):
         entry = entries.get(TechniqueBudget(technique, SPP, spp))
@@ -47,7 +47,7 @@ def _rows(doc: records.Results, sweep: tuple) -> list[str]:
             continue
         gain = (entry.gain or {}).get(metric)
         default_mark = " (default)" if size == default else ""
-        rows.append(f"| {map_label} | {figure} | {size}{unit}{default_mark} | {spp} | "
+        rows.append(f"| {map_name.replace('_', ' ')} | {figure} | {size}{unit}{default_mark} | {spp} | "
                     f"{tables.METRIC_NAMES[metric]} {m.mean:.4g} [{m.ci95[0]:.4g}, "
                     f"{m.ci95[1]:.4g}] | {tables.gain_text(gain)} | {entry.time.mean:.3g} |")
     return rows

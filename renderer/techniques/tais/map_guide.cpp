@@ -66,15 +66,22 @@ float MapGuide::alphaFor(double partMass, double wholeMass) const {
     return float(settings_.alpha * (partMass / wholeMass));
 }
 
-float MapGuide::selectionPmf(const Light& light, const Vec3& reference, uint32_t vertex) const {
-    const float standard = scene().lightSelector().pmf(light, reference);
-    if (!steersSelection(vertex)) return standard;
+MapGuide::SelectionMix MapGuide::selectionMix(uint32_t vertex) const {
     const InvertedMap1D& map = *maps_.lightSelection;
     const int first = lightSelectionCell(int(vertex), 0, maps_.lights);
     const double mass = map.sliceTotal(first, maps_.lights, mapPart());
-    const float a = alphaFor(mass, map.sliceTotal(first, maps_.lights));
-    const double q = a > 0 ? map.weight(first + light.index(), mapPart()) / mass : 0.0;
-    return a * float(q) + (1 - a) * standard;
+    return {first, mass, alphaFor(mass, map.sliceTotal(first, maps_.lights))};
+}
+
+float MapGuide::selectionPmf(const Light& light, const Vec3& reference, uint32_t vertex) const {
+    const float standard = scene().lightSelector().pmf(light, reference);
+    if (!steersSelection(vertex)) return standard;
+    const SelectionMix mix = selectionMix(vertex);
+    const double q =
+        mix.alpha > 0
+            ? maps_.lightSelection->weight(mix.first + light.index(), mapPart()) / mix.mass
+            : 0.0;
+    return mix.alpha * float(q) + (1 - mix.alpha) * standard;
 }
 
 float MapGuide::pointOnLightPdf(const Light& light, const LightReference& reference,
@@ -100,19 +107,18 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
     if (steersSelection(vertex)) {
         // Eq. (2): the map's entries of this vertex with probability α, the scene's selector
         // otherwise.
-        const InvertedMap1D& map = *maps_.lightSelection;
-        const int first = lightSelectionCell(int(vertex), 0, maps_.lights);
-        const float a = alphaFor(map.sliceTotal(first, maps_.lights, mapPart()),
-                                 map.sliceTotal(first, maps_.lights));
+        const SelectionMix mix = selectionMix(vertex);
+        const float a = mix.alpha;
         float unused;
-        light = uSelect < a
-                    ? scene().lights()[size_t(
-                          map.sampleCellIn(first, maps_.lights, rescale(uSelect, 0, a), mapPart()) -
-                          first)]
-                    : selector.select(rescale(uSelect, a, 1), reference.point, &unused);
+        light = uSelect < a ? scene().lights()[size_t(
+                                  maps_.lightSelection->sampleCellIn(
+                                      mix.first, maps_.lights, rescale(uSelect, 0, a), mapPart()) -
+                                  mix.first)]
+                            : selector.select(rescale(uSelect, a, 1), reference.point, &unused);
         if (!light) return false;
         selectPmf = selectionPmf(*light, reference.point, vertex);
-        record(MapKind::LightSelection, first + light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f), true);
+        record(MapKind::LightSelection, mix.first + light->index(), Vec2(0.0f, 0.0f), Rgb(0.0f),
+               true);
         ++lightRecords_;
     } else {
         light = selector.select(uSelect, reference.point, &selectPmf);

@@ -104,6 +104,14 @@ class MapGuide : public StandardSampling {
     // The map's share a · p_map(cell) of the scatter-direction mixture (0 when a = 0, where
     // the credited part may be empty).
     float directionMapTerm(const InvertedMap2D& map, float a, Vec2 cell) const;
+    // The light choice at `vertex`: its slice of the map (from cell `first`), the mass of the
+    // part drawn from, and α.
+    struct SelectionMix {
+        int first;
+        double mass;
+        float alpha;
+    };
+    SelectionMix selectionMix(uint32_t vertex) const;
     // Eq. (2) for the light-selection map at `vertex`: α q_v(light) + (1 − α) p_selector(light).
     float selectionPmf(const Light& light, const Vec3& reference, uint32_t vertex) const;
     // The point-on-light map's density at the coordinates of `point` (1 when not warped).
