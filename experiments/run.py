@@ -10,6 +10,7 @@
   run.py check      [CONFIG ...]                 CI: fail when an error exceeds its threshold
   run.py calibrate  CONFIG [--spp N ...]         propose thresholds from the results file
   run.py reproduce                               references, run, tables and plots
+  run.py overhead                                each experiment's time outside render loops
 
 CONFIG defaults to every configs/experiments/<paper>/<figure>.json. --profile quick|full
 (default quick, or $PROFILE). Exit status: 0 done, 1 a step failed (or a threshold), 2 bad
@@ -127,6 +128,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+def cmd_overhead(args: argparse.Namespace) -> int:
+    from harness import overhead
+    print(overhead.report(args.profile))
+    return 0
+
+
 def cmd_calibrate(args: argparse.Namespace) -> int:
     exp = config.load(args.config)
     results_file = paths.results_file(exp, args.profile)
@@ -181,6 +188,7 @@ def parser() -> argparse.ArgumentParser:
     on_configs("reproduce", cmd_reproduce, force=True)
     sub.add_parser("tables").set_defaults(func=cmd_tables)
     sub.add_parser("plots").set_defaults(func=cmd_plots)
+    sub.add_parser("overhead").set_defaults(func=cmd_overhead)
     p = sub.add_parser("calibrate")
     p.add_argument("config", type=Path)
     p.add_argument("--spp", type=int, nargs="*", help="budgets to set thresholds at")

@@ -43,13 +43,19 @@ CONFIGURATIONS = {
 }
 
 
-def pixel_hash(exr):
+def read_exr(exr):
+    """The EXR's spec (channel names, metadata) and its pixels as float32."""
     image = oiio.ImageInput.open(str(exr))
     if image is None:
         raise RuntimeError(f"cannot read {exr}: {oiio.geterror()}")
     spec = image.spec()
     pixels = image.read_image(oiio.FLOAT)
     image.close()
+    return spec, pixels
+
+
+def pixel_hash(exr):
+    spec, pixels = read_exr(exr)
     digest = hashlib.sha256()
     digest.update(",".join(spec.channelnames).encode())
     digest.update(pixels.tobytes())

@@ -2,10 +2,14 @@
 // input and nothing written, time-limited renders, Ctrl-C, and thread-count independence.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <stb/stb_image.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -44,6 +48,26 @@ std::string attribute(const ExrImage& image, const std::string& name) {
     return o.str();
 }
 
+// The preview is the image's sRGB encoding at exposure 0, 8 bits per channel.
+void expectPreviewOf(const ExrImage& image, const fs::path& png) {
+    int width = 0, height = 0, components = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load(png.c_str(), &width, &height, &components, 3), stbi_image_free);
+    ASSERT_TRUE(pixels) << png << ": " << stbi_failure_reason();
+    ASSERT_EQ(width, image.width);
+    ASSERT_EQ(height, image.height);
+    EXPECT_EQ(components, 3);
+    const char* names[] = {"R", "G", "B"};
+    for (size_t i = 0; i < size_t(width) * height; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float linear = std::clamp(image.channels.at(names[c])[i], 0.0f, 1.0f);
+            const float srgb = linear <= 0.0031308f
+                                   ? 12.92f * linear
+                                   : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+            ASSERT_EQ(pixels.get()[3 * i + c], std::lround(srgb * 255.0f)) << i << names[c];
+        }
+}
+
 TEST(Cli, RenderWritesExrWithChannelsAndMetadataAndPngPreview) {
     const fs::path dir = scratchDirectory();
     std::string errors;
@@ -52,8 +76,8 @@ TEST(Cli, RenderWritesExrWithChannelsAndMetadataAndPngPreview) {
                   dir, &errors),
               0)
         << errors;
-    EXPECT_TRUE(fs::is_regular_file(dir / "out.png"));
     const ExrImage image = readExr(dir / "out.exr");
+    expectPreviewOf(image, dir / "out.png");
     EXPECT_EQ(image.width, 24);
     EXPECT_EQ(image.height, 16);
     for (const char* c : {"R", "G", "B", "variance.R", "variance.G", "variance.B", "samples"})

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from . import config, jobs, paths, provenance, references, renders, stats
+from . import config, jobs, paths, provenance, references, render_server, renders, stats
 from .config import Experiment, Profile
 from .errors import HarnessFailure
 from .records import (SPP, TIME, MatchedBudget, OriginalBudget, Run, RunRecord, SummaryEntry,
@@ -287,14 +287,17 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
     cpu_started = _children_cpu_seconds()
     out_dir = paths.RENDERS / profile.name / exp.id
     shutil.rmtree(out_dir, ignore_errors=True)
-    records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
-    matched = matched_budgets(exp, profile, records)
-    if matched:
-        runs = matched_runs(exp, profile, matched, records)
-        if runs:
-            records += execute(exp, profile, runs, out_dir, reference_file, workers,
-                               phase="matched time")
-        records += matched_duplicates(matched, records)
+    try:
+        records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
+        matched = matched_budgets(exp, profile, records)
+        if matched:
+            runs = matched_runs(exp, profile, matched, records)
+            if runs:
+                records += execute(exp, profile, runs, out_dir, reference_file, workers,
+                                   phase="matched time")
+            records += matched_duplicates(matched, records)
+    finally:
+        render_server.close_all()  # their CPU time counts once they have exited
     ratio = references.check_noise(exp, profile, entry, smallest_rmse(records))
     with tempfile.TemporaryDirectory() as scratch:
         fitted = slopes(exp, records, scratch)

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import config, jobs, paths
+from . import config, jobs, paths, render_server
 from .config import Experiment, Integrator, Profile, Technique
 from .errors import HarnessFailure, SceneRejected
 
@@ -91,10 +91,10 @@ def render_technique(exp: Experiment, profile: Profile, technique: Technique, ou
 
 def _render(scene: list[object], out: Path, seed: int, spp: int | None, seconds: float | None,
             threads: int) -> None:
-    args = [paths.renderer_binary(), "render", *scene,
-            "--seed", seed, "--threads", threads, "--no-preview", "--out", out]
+    """`renderer render SCENE ...` (on a render server)."""
+    args = [*scene, "--seed", seed, "--threads", threads, "--no-preview", "--out", out]
     args += ["--time-limit", seconds] if seconds is not None else ["--spp", spp]
-    jobs.run_command(args)
+    render_server.render(args)
 
 
 def compare(image: Path, reference: Path, relmse_reject: float = 0.0) -> Comparison:

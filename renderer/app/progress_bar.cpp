@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace rr {
 
@@ -22,7 +23,7 @@ std::string formatSeconds(double s) {
 
 }  // namespace
 
-ProgressBar::ProgressBar() : interactive_(::isatty(STDERR_FILENO) == 1) {}
+ProgressBar::ProgressBar(bool enabled) : interactive_(enabled && ::isatty(STDERR_FILENO) == 1) {}
 
 void ProgressBar::update(const RenderProgress& p) {
     if (!interactive_ || p.elapsed <= 0) return;
@@ -45,9 +46,9 @@ void ProgressBar::update(const RenderProgress& p) {
     drawn_ = true;
 }
 
-void ProgressBar::finish(const std::string& summary) {
+void ProgressBar::clear() {
     if (drawn_) std::fprintf(stderr, "\r%*s\r", 110, "");
-    std::fprintf(stderr, "%s\n", summary.c_str());
+    drawn_ = false;
 }
 
 }  // namespace rr

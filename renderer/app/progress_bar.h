@@ -1,8 +1,6 @@
-// Progress on stderr: a live bar (percent, samples/s, elapsed, ETA) on a terminal; nothing
-// until the one summary line otherwise (logs stay readable).
+// Progress on stderr: a live bar (percent, samples/s, elapsed, ETA) on a terminal, nothing
+// otherwise (logs stay readable: the command prints its one summary line).
 #pragma once
-
-#include <string>
 
 #include "render/renderer.h"
 
@@ -10,10 +8,11 @@ namespace rr {
 
 class ProgressBar {
   public:
-    ProgressBar();
+    // disabled: never draws (e.g. `renderer serve`, whose replies carry the summary).
+    explicit ProgressBar(bool enabled = true);
     void update(const RenderProgress& p);
-    // Clears the live bar and prints the final summary line.
-    void finish(const std::string& summary);
+    // Clears the live bar, so that the summary line can follow.
+    void clear();
 
   private:
     bool interactive_;

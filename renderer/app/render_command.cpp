@@ -5,10 +5,12 @@
 #include <tbb/info.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 
 #include "app/interrupt.h"
 #include "app/progress_bar.h"
@@ -26,6 +28,12 @@ namespace rr {
 namespace fs = std::filesystem;
 
 namespace {
+
+using Reporter = std::function<void(const std::string&)>;
+
+void printToStderr(const std::string& line) {
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
 
 // Command-line flags become JSON-pointer assignments applied after any --set, so the scene
 // document records exactly what was rendered.
@@ -102,14 +110,15 @@ void checkOutputWritable(const fs::path& out) {
     if (!writable) throw ConfigError("", "--out: cannot write in " + dir.string());
 }
 
-PreparedRender prepare(const RenderCommandOptions& o) {
+PreparedRender prepare(const RenderCommandOptions& o, SceneCache* scenes) {
     PreparedRender p;
     if (!fs::is_regular_file(o.scene)) throw ConfigError("", "scene file not found: " + o.scene);
     p.fileText = readSceneText(o.scene);
     p.document = parseSceneText(p.fileText, o.scene);
     applyCommandLine(p.document, o);
     p.out = outputPath(o);
-    p.loaded = loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()));
+    p.loaded =
+        loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()), scenes);
     const RenderSettings& settings = p.loaded.render;
     p.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
     p.schedule = p.loaded.schedule(ScheduleInputs{*p.loaded.scene, settings.width, settings.height,
@@ -121,6 +130,21 @@ PreparedRender prepare(const RenderCommandOptions& o) {
                               "--time-limit cannot stop it part-way (use --spp)");
     if (!o.checkOnly) checkOutputWritable(p.out);
     return p;
+}
+
+// The process's peak resident memory so far (scene, acceleration structure, film and the
+// integrator's working memory such as TAIS's maps), in MiB: under `renderer serve`, the peak
+// over every render it has served. VmHWM, not getrusage's ru_maxrss: the kernel carries
+// ru_maxrss across exec, so it would include the memory of the (Python) process that forked
+// the renderer.
+double peakResidentMiB() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;
 }
 
 void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const RenderStats& stats,
@@ -142,11 +166,7 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.threads"] = threads;
     a["renderer.renderTime"] = stats.seconds;
     a["renderer.prepareTime"] = p.loaded.prepareSeconds;
-    // The process's peak resident memory so far (scene, acceleration structure, film and the
-    // integrator's working memory such as TAIS's maps), in MiB.
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    a["renderer.peakMemoryMiB"] = double(usage.ru_maxrss) / 1024.0;
+    a["renderer.peakMemoryMiB"] = peakResidentMiB();
     a["renderer.features"] = featureList(p.loaded.scene->features());
     a["renderer.rays.camera"] = static_cast<double>(stats.rays.camera);
     a["renderer.rays.extension"] = static_cast<double>(stats.rays.extension);
@@ -165,19 +185,26 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
 }
 
 // Writes the EXR and the preview with SIGINT held back, so Ctrl-C cannot interrupt a write
-// half-way (the signal is delivered once the files are in place).
-void writeOutputs(const RenderCommandOptions& o, const fs::path& out, ExrImage& image) {
+// half-way (the signal is delivered once the files are in place). The preview is encoded on
+// its own thread while the EXR is compressed, and written only after the EXR.
+void writeOutputs(const RenderCommandOptions& o, const fs::path& out, const ExrImage& image,
+                  int threads) {
     sigset_t interrupt, previous;
     sigemptyset(&interrupt);
     sigaddset(&interrupt, SIGINT);
     pthread_sigmask(SIG_BLOCK, &interrupt, &previous);
     try {
-        writeExr(out, image);
-        if (o.preview) {
+        std::future<std::vector<uint8_t>> preview;
+        if (o.preview)
+            preview = std::async(std::launch::async, [&] {
+                return encodePngPreview(image.width, image.height, image.channels.at("R"),
+                                        image.channels.at("G"), image.channels.at("B"), o.exposure);
+            });
+        writeExr(out, image, threads);
+        if (preview.valid()) {
             fs::path png = out;
             png.replace_extension(".png");
-            writePngPreview(png, image.width, image.height, image.channels["R"],
-                            image.channels["G"], image.channels["B"], o.exposure);
+            writePngPreview(png, preview.get());
         }
     } catch (...) {
         pthread_sigmask(SIG_SETMASK, &previous, nullptr);
@@ -187,8 +214,8 @@ void writeOutputs(const RenderCommandOptions& o, const fs::path& out, ExrImage& 
 }
 
 // Bad input: one line on stderr, or with `check --json` one object on stdout. Exit status 2.
-int reportBadInput(const RenderCommandOptions& o, const std::string& message,
-                   const std::string& pointer, ConfigError::Kind kind) {
+int reportBadInput(const RenderCommandOptions& o, const Reporter& report,
+                   const std::string& message, const std::string& pointer, ConfigError::Kind kind) {
     if (o.checkOnly && o.json) {
         const Json result = {
             {"valid", false},
@@ -197,7 +224,7 @@ int reportBadInput(const RenderCommandOptions& o, const std::string& message,
             {"message", message}};
         std::printf("%s\n", result.dump().c_str());
     } else {
-        std::fprintf(stderr, "error: %s\n", message.c_str());
+        report("error: " + message);
     }
     return 2;
 }
@@ -227,16 +254,17 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
 
 }  // namespace
 
-int runRenderCommand(const RenderCommandOptions& o) {
+int runRenderCommand(const RenderCommandOptions& o, const RenderEnvironment& environment) {
+    const Reporter report = environment.report ? environment.report : printToStderr;
     PreparedRender p;
     try {
-        p = prepare(o);
+        p = prepare(o, environment.scenes);
     } catch (const ConfigError& e) {
-        return reportBadInput(o, e.what(), e.pointer(), e.kind());
+        return reportBadInput(o, report, e.what(), e.pointer(), e.kind());
     } catch (const fs::filesystem_error& e) {  // unreadable scene or asset: bad input too
-        return reportBadInput(o, e.what(), "", ConfigError::Kind::Invalid);
+        return reportBadInput(o, report, e.what(), "", ConfigError::Kind::Invalid);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        report(std::string("error: ") + e.what());
         return 1;
     }
 
@@ -251,36 +279,44 @@ int runRenderCommand(const RenderCommandOptions& o) {
     options.cancel = &installInterruptHandler();
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
 
-    ProgressBar bar;
+    ProgressBar bar(environment.progressBar);
     RenderStats stats;
+    double writeSeconds = 0;
     try {
         Film film(settings.width, settings.height);
         stats = render(*p.schedule, options, film,
                        [&](const RenderProgress& progress) { bar.update(progress); });
         if (!stats.complete) {  // interrupted before any image was complete
-            bar.finish("interrupted before a complete image; nothing written");
+            bar.clear();
+            report("interrupted before a complete image; nothing written");
             return 130;
         }
         ExrImage image = filmToExr(film, p.loaded.integrator->pixelEstimates());
         addMetadata(o, p, stats, threads, &image);
-        writeOutputs(o, p.out, image);
+        const auto writeStart = std::chrono::steady_clock::now();
+        writeOutputs(o, p.out, image, threads);
+        writeSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        bar.clear();
+        report(std::string("error: ") + e.what());
         return 1;
     }
 
     char summary[512];
     std::snprintf(
         summary, sizeof summary,
-        "%s: %s, %dx%d, %u spp in %.2f s (%.2f Mrays/s, %.3f Msamples/s, %d threads)%s -> %s",
+        "%s: %s, %dx%d, %u spp in %.2f s (%.2f Mrays/s, %.3f Msamples/s, %d threads)%s -> %s "
+        "(written in %.0f ms)",
         o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width, settings.height,
         stats.spp, stats.seconds, stats.rays.total() / stats.seconds * 1e-6,
         double(stats.spp) * settings.width * settings.height / stats.seconds * 1e-6, threads,
-        stats.interrupted ? " [interrupted]" : "", p.out.c_str());
-    bar.finish(summary);
+        stats.interrupted ? " [interrupted]" : "", p.out.c_str(), writeSeconds * 1e3);
+    bar.clear();
+    report(summary);
     if (stats.nonFiniteSamples > 0)
-        std::fprintf(stderr, "warning: %llu non-finite samples were replaced by zero\n",
-                     static_cast<unsigned long long>(stats.nonFiniteSamples));
+        report("warning: " + std::to_string(stats.nonFiniteSamples) +
+               " non-finite samples were replaced by zero");
     return stats.interrupted ? 130 : 0;
 }
 

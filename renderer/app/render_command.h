@@ -2,9 +2,12 @@
 // `renderer check SCENE.json [--set ...]`: the same loading and validation, nothing rendered.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "loader/scene_cache.h"
 
 namespace rr {
 
@@ -29,6 +32,14 @@ struct RenderCommandOptions {
 // 2 bad input; with json as well, stdout holds {"valid": true, "integrator", "resolution",
 // "spp", "features", "sceneSha256"} or {"valid": false, "error": "invalid" | "missing_asset",
 // "pointer", "message"}.
-int runRenderCommand(const RenderCommandOptions& options);
+// Messages (errors, warnings, the summary) are one line each, to stderr unless `report` is
+// set. `renderer serve` passes its scene cache and collects the lines for its reply.
+struct RenderEnvironment {
+    SceneCache* scenes = nullptr;
+    std::function<void(const std::string&)> report;
+    bool progressBar = true;  // drawn on a terminal only
+};
+int runRenderCommand(const RenderCommandOptions& options,
+                     const RenderEnvironment& environment = {});
 
 }  // namespace rr

@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include <stdexcept>
 
@@ -16,10 +17,12 @@
 
 namespace rr {
 
-void writeExr(const std::filesystem::path& file, const ExrImage& image) {
+void writeExr(const std::filesystem::path& file, const ExrImage& image, int threads) {
+    Imf::setGlobalThreadCount(threads > 1 ? threads : 0);  // 0: compress on the calling thread
     writeAtomically(file, [&](const std::filesystem::path& temporary) {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        header.zipCompressionLevel() = 1;
         for (const auto& [name, value] : image.attributes) {
             if (const auto* s = std::get_if<std::string>(&value))
                 header.insert(name, Imf::StringAttribute(*s));

@@ -1,6 +1,7 @@
 #include "loader/scene_loader.h"
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 #include "config/type_table.h"
@@ -28,9 +29,63 @@ void checkStructuredSampleCount(const RenderSettings& render, const Integrator& 
                 " exceeds 2^24 = " + std::to_string(kMaxSpp));
 }
 
+// Where the first medium is declared (the scene's, else the first shape's interior), for the
+// error if the integrator cannot render media.
+std::string firstMediumPointer(const Json& document) {
+    if (document.contains("medium")) return "/medium";
+    const auto shapes = document.find("shapes");
+    if (shapes == document.end() || !shapes->is_array()) return "";
+    for (size_t i = 0; i < shapes->size(); ++i)
+        if ((*shapes)[i].is_object() && (*shapes)[i].contains("interior_medium"))
+            return "/shapes/" + std::to_string(i) + "/interior_medium";
+    return "";
+}
+
+// Reads the camera, media, materials, shapes and lights into `builder`.
+void readSceneObjects(ObjectReader& root, const RenderSettings& render, const AssetResolver& assets,
+                      SceneBuilder& builder) {
+    CameraSettings camera;
+    {
+        ObjectReader cj(root.raw("camera"), root.pointerTo("camera"));
+        camera = readCamera(cj);
+    }
+    builder.setCamera(camera, render.width, render.height);
+
+    if (const Json* m = root.rawOptional("medium")) {
+        ObjectReader mj(*m, root.pointerTo("medium"));
+        builder.setSceneMedium(builder.addMedium(makeMedium(mj)));
+    }
+
+    MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder,
+                              assets);
+
+    const Json& shapes = root.raw("shapes");
+    if (!shapes.is_array()) root.fail("shapes", "expected an array of shapes");
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
+        readShape(sj, materials, builder, assets, camera);
+    }
+
+    if (const Json* lights = root.rawOptional("lights")) {
+        if (!lights->is_array()) root.fail("lights", "expected an array of lights");
+        for (size_t i = 0; i < lights->size(); ++i) {
+            ObjectReader lj((*lights)[i], root.pointerTo("lights") + "/" + std::to_string(i));
+            builder.addLight(makeLight(lj, assets));
+        }
+    }
+}
+
+// A cached scene was read from the same values: they are valid, only marked as read here.
+void skipSceneObjects(ObjectReader& root) {
+    root.raw("camera");
+    root.raw("shapes");
+    for (const char* key : {"medium", "materials", "lights"})
+        root.rawOptional(key);
+}
+
 }  // namespace
 
-LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
+LoadedScene loadScene(const Json& document, const AssetResolver& assets, SceneCache* cache) {
     ObjectReader root(document, "");
     root.getString("description", "");
 
@@ -43,40 +98,14 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
         render = readRenderSettings(rj, &path);
     }
 
-    SceneBuilder builder;
-    CameraSettings camera;
-    {
-        ObjectReader cj(root.raw("camera"), root.pointerTo("camera"));
-        camera = readCamera(cj);
-    }
-    builder.setCamera(camera, render.width, render.height);
-
-    // Where the first medium is declared, for the error if the integrator cannot render it.
-    std::string mediumPointer;
-    if (const Json* m = root.rawOptional("medium")) {
-        ObjectReader mj(*m, root.pointerTo("medium"));
-        builder.setSceneMedium(builder.addMedium(makeMedium(mj)));
-        mediumPointer = mj.pointer();
-    }
-
-    MaterialCatalog materials(root.rawOptional("materials"), root.pointerTo("materials"), builder,
-                              assets);
-
-    const Json& shapes = root.raw("shapes");
-    if (!shapes.is_array()) root.fail("shapes", "expected an array of shapes");
-    for (size_t i = 0; i < shapes.size(); ++i) {
-        ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
-        readShape(sj, materials, builder, assets, camera);
-        if (mediumPointer.empty() && shapes[i].contains("interior_medium"))
-            mediumPointer = sj.pointerTo("interior_medium");
-    }
-
-    if (const Json* lights = root.rawOptional("lights")) {
-        if (!lights->is_array()) root.fail("lights", "expected an array of lights");
-        for (size_t i = 0; i < lights->size(); ++i) {
-            ObjectReader lj((*lights)[i], root.pointerTo("lights") + "/" + std::to_string(i));
-            builder.addLight(makeLight(lj, assets));
-        }
+    const std::string cacheKey = cache ? SceneCache::key(document, assets) : std::string();
+    std::shared_ptr<const Scene> scene = cache ? cache->find(cacheKey) : nullptr;
+    std::optional<SceneBuilder> builder;
+    if (scene) {
+        skipSceneObjects(root);
+    } else {
+        builder.emplace();
+        readSceneObjects(root, render, assets, *builder);
     }
 
     BuiltIntegrator built;
@@ -88,6 +117,7 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
     }
     const Integrator& integrator = *built.integrator;
     checkStructuredSampleCount(render, integrator, root.pointerTo("render") + "/spp");
+    const std::string mediumPointer = firstMediumPointer(document);
     if (!mediumPointer.empty() && !techniqueRegistry().rendersMedia(integrator.name()))
         throw ConfigError(mediumPointer, "the " + integrator.name() +
                                              " integrator does not render participating media; "
@@ -95,10 +125,14 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets) {
                                              quotedNames(techniqueRegistry().mediaIntegrators()));
     root.finish();
 
+    if (!scene) {
+        scene = builder->build(render.lightSelection);
+        if (scene->lights().empty())
+            throw ConfigError("", "the scene has no light: add an emitter shape or a light");
+        if (cache) cache->insert(cacheKey, scene);
+    }
     LoadedScene loaded;
-    loaded.scene = builder.build(render.lightSelection);
-    if (loaded.scene->lights().empty())
-        throw ConfigError("", "the scene has no light: add an emitter shape or a light");
+    loaded.scene = std::move(scene);
     const auto start = std::chrono::steady_clock::now();
     built.integrator->prepare(*loaded.scene);
     loaded.prepareSeconds =

@@ -11,13 +11,14 @@
 #include "integrators/integrator.h"
 #include "loader/asset_resolver.h"
 #include "loader/render_settings_reader.h"
+#include "loader/scene_cache.h"
 #include "render/technique_registry.h"
 #include "scene/scene.h"
 
 namespace rr {
 
 struct LoadedScene {
-    std::unique_ptr<Scene> scene;
+    std::shared_ptr<const Scene> scene;  // immutable; shared with a SceneCache
     std::unique_ptr<Integrator> integrator;
     ScheduleMaker schedule;  // how the integrator's samples are scheduled
     RenderSettings render;
@@ -27,6 +28,10 @@ struct LoadedScene {
     double prepareSeconds = 0;
 };
 
-LoadedScene loadScene(const Json& document, const AssetResolver& assets);
+// With a cache, a scene built before from the same values (SceneCache::key) is reused, and a
+// newly built one is added: the integrator is always built afresh, so renders share nothing
+// that a render changes.
+LoadedScene loadScene(const Json& document, const AssetResolver& assets,
+                      SceneCache* cache = nullptr);
 
 }  // namespace rr
