@@ -59,6 +59,7 @@ def metadata(exr: Path) -> tuple[dict[str, float], float]:
     variance = np.mean([pixels[..., names.index(f"variance.{c}")] for c in "RGB"])
     values = {a.name: a.value for a in spec.extra_attribs
               if a.name.startswith("renderer.") and isinstance(a.value, (int, float))}
+    values["samples"] = values["renderer.spp"] * spec.width * spec.height
     return values, float(variance)
 
 
@@ -87,7 +88,7 @@ def default_scene(scratch: Path) -> None:
     print("default scene (cornell_spheres), path_mis, 512x512, 64 spp, 2 threads:")
     print(f"  peak RSS {rss:.1f} MiB; EXR + PNG written in {written_ms(errors):.0f} ms; "
           f"outside the render loop {outside:.2f} s of {wall:.2f} s")
-    print(f"  {64 * 512 * 512 / seconds * 1e-6:.3f} Msamples/s; efficiency "
+    print(f"  {meta['samples'] / seconds * 1e-6:.3f} Msamples/s; efficiency "
           f"1/(variance x time) = {1 / (variance * seconds):.4g}")
 
 
@@ -110,7 +111,7 @@ def dragon(scratch: Path) -> None:
         seconds = statistics.median(m["renderer.renderTime"] for m, _ in runs)
         meta, variance = runs[0]
         rays = {k: meta[f"renderer.rays.{k}"] for k in ("camera", "extension", "shadow")}
-        samples = meta["renderer.spp"] * 512 * 384
+        samples = meta["samples"]
         results[threads] = (seconds, rays)
         print(f"  {threads} thread(s): {sum(rays.values()) / seconds * 1e-6:.2f} Mrays/s, "
               f"{samples / seconds * 1e-6:.2f} Msamples/s, efficiency "

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """`renderer serve` against `renderer render`: the same arguments give the same pixels and
 metadata (all but the timings and the process's peak memory), whatever was served before, with
-the scene built once or rebuilt after eviction; bad requests get status 2, one message naming
-the problem and no output, and the server goes on serving. RENDERER_BINARY names the binary."""
+the scene built once or rebuilt after eviction, after a change to what the scene is built from
+(resolution, camera, a material) and after an asset file changed on disk; bad requests get
+status 2, one message naming the problem and no output, and the server goes on serving.
+RENDERER_BINARY names the binary."""
 import json
 import os
 import pathlib
@@ -21,8 +23,9 @@ PENUMBRAE = str(SCENES / "twostage_fig10_penumbrae.json")
 UNDETERMINED = {"renderer.renderTime", "renderer.prepareTime", "renderer.peakMemoryMiB"}
 
 # Name → arguments (before --out). Several integrators on one scene, so that a served render
-# follows renders whose integrators kept state; a second scene; render settings that change the
-# built scene (max_depth) and only the schedule (seed, spp).
+# follows renders whose integrators kept state; a second scene; changes to what the scene is
+# built from (resolution, camera, a material), which must not reuse the cached scene; and
+# settings that reach only the integrator or the schedule (max_depth, seed, spp), which may.
 JOBS = {
     "path_mis": [CORNELL, "--seed", "3", "--spp", "4"],
     "tais": [CORNELL, "--seed", "4", "--spp", "4", "--set",
@@ -37,8 +40,18 @@ JOBS = {
                   '/integrator={"type":"two_stage","samples":4}'],
     "path_mis_depth3": [CORNELL, "--seed", "3", "--spp", "4", "--set", "/render/max_depth=3"],
     "path_mis_seed8": [CORNELL, "--seed", "8", "--spp", "5"],
+    "path_mis_20x12": [CORNELL, "--seed", "3", "--spp", "4", "--resolution", "20x12"],
+    "path_mis_fov50": [CORNELL, "--seed", "3", "--spp", "4", "--set", "/camera/fov=50"],
+    "path_mis_red_walls": [CORNELL, "--seed", "3", "--spp", "4", "--set",
+                           "/materials/white/albedo=[0.6,0.2,0.2]"],
 }
-COMMON = ["--resolution", "24x16", "--threads", "2", "--no-preview"]
+COMMON = ["--threads", "2", "--no-preview"]
+
+
+def arguments(args):
+    """A job's arguments with the common options (24x16 unless it sets its resolution)."""
+    resolution = [] if "--resolution" in args else ["--resolution", "24x16"]
+    return [*args, *resolution, *COMMON]
 
 
 def read(exr):
@@ -52,13 +65,19 @@ def read(exr):
 
 class Server:
     def __init__(self, *options):
+        # stderr goes to a file: a pipe nobody reads could fill and stall the server.
+        self.errors = tempfile.TemporaryFile("w+")
         self.proc = subprocess.Popen([RENDERER, "serve", *options], stdin=subprocess.PIPE,
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                     stdout=subprocess.PIPE, stderr=self.errors, text=True)
 
     def send(self, line):
         self.proc.stdin.write(line + "\n")
         self.proc.stdin.flush()
-        return json.loads(self.proc.stdout.readline())
+        reply = self.proc.stdout.readline()
+        if not reply:
+            raise AssertionError(f"the server exited (status {self.proc.wait(timeout=60)}) "
+                                 f"without answering {line!r}")
+        return json.loads(reply)
 
     def render(self, args):
         return self.send(json.dumps(args))
@@ -66,9 +85,10 @@ class Server:
     def close(self):
         self.proc.stdin.close()
         status = self.proc.wait(timeout=60)
-        errors = self.proc.stderr.read()
-        self.proc.stderr.close()
         self.proc.stdout.close()
+        self.errors.seek(0)
+        errors = self.errors.read()
+        self.errors.close()
         return status, errors
 
 
@@ -80,7 +100,7 @@ class ServeTest(unittest.TestCase):
         cls.expected = {}
         for name, args in JOBS.items():
             out = cls.dir / f"{name}.separate.exr"
-            proc = subprocess.run([RENDERER, "render", *args, *COMMON, "--out", str(out)],
+            proc = subprocess.run([RENDERER, "render", *arguments(args), "--out", str(out)],
                                   capture_output=True, text=True)
             if proc.returncode != 0:
                 raise RuntimeError(f"{name}: {proc.stderr}")
@@ -93,7 +113,7 @@ class ServeTest(unittest.TestCase):
     def serve_and_compare(self, server, order, tag):
         for name in order:
             out = self.dir / f"{name}.{tag}.exr"
-            reply = server.render([*JOBS[name], *COMMON, "--out", str(out)])
+            reply = server.render([*arguments(JOBS[name]), "--out", str(out)])
             self.assertEqual(reply["status"], 0, reply)
             self.assertEqual(len(reply["messages"]), 1, reply)  # the summary line
             self.assertIn(str(out), reply["messages"][0])
@@ -105,7 +125,8 @@ class ServeTest(unittest.TestCase):
 
     def test_served_renders_equal_separate_ones_in_any_order(self):
         order = ["tais", "path_mis", "pmc_ip", "two_stage", "direct", "path_mis_seed8",
-                 "path_mis_depth3", "path_mis", "tais"]
+                 "path_mis_depth3", "path_mis_20x12", "path_mis", "path_mis_fov50",
+                 "path_mis_red_walls", "path_mis", "tais"]
         for tag, options in (("cached", []), ("evicted", ["--cached-scenes", "1"]),
                              ("uncached", ["--cached-scenes", "0"])):
             server = Server(*options)
@@ -116,10 +137,42 @@ class ServeTest(unittest.TestCase):
             self.assertEqual(status, 0, errors)
             self.assertEqual(errors, "", tag)
 
+    def test_a_changed_asset_file_rebuilds_the_scene(self):
+        scene = {
+            "render": {"resolution": [16, 12], "spp": 2},
+            "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 50},
+            "materials": {"grey": {"type": "lambert", "albedo": 0.5}},
+            "shapes": [
+                {"type": "mesh", "file": "triangle.obj", "material": "grey"},
+                {"type": "quad", "corner": [-1, 1.5, -1], "edge_u": [2, 0, 0],
+                 "edge_v": [0, 0, 2], "emission": {"radiance": 4}},
+            ],
+        }
+        folder = self.dir / "asset_change"
+        folder.mkdir()
+        scene_file = folder / "scene.json"
+        scene_file.write_text(json.dumps(scene))
+        mesh = folder / "triangle.obj"
+        args = [str(scene_file), *COMMON]
+        server = Server()
+        try:
+            for corner in ("1 0 0", "1.6 0.4 0.2"):  # the second triangle is larger, and longer
+                mesh.write_text(f"v -1 -1 0\nv {corner}\nv 0 1 0\nf 1 2 3\n")
+                separate, served = folder / "separate.exr", folder / "served.exr"
+                subprocess.run([RENDERER, "render", *args, "--out", str(separate)], check=True,
+                               capture_output=True)
+                reply = server.render([*args, "--out", str(served)])
+                self.assertEqual(reply["status"], 0, reply)
+                self.assertTrue(read(served)[1] == read(separate)[1], corner)
+        finally:
+            status, errors = server.close()
+        self.assertEqual(status, 0, errors)
+
     def test_bad_requests_get_status_two_one_message_and_write_nothing(self):
         out = self.dir / "bad.exr"
         bad = {
             "not JSON": ("[unclosed", "one line of JSON"),
+            "empty line": ("", "one line of JSON"),
             "not an array": ('{"scene": "x"}', "JSON array"),
             "not strings": ("[1, 2]", "string"),
             "unknown option": (json.dumps([CORNELL, "--bogus", "--out", str(out)]), "--bogus"),
@@ -127,6 +180,7 @@ class ServeTest(unittest.TestCase):
                               "absent.json"),
             "unknown key": (json.dumps([CORNELL, *COMMON, "--set", "/render/bogus=1",
                                         "--out", str(out)]), "/render/bogus"),
+            "help": (json.dumps([CORNELL, "--help"]), "--help"),
         }
         server = Server()
         try:

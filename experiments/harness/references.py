@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from . import jobs, paths, provenance, renders
+from . import jobs, paths, provenance, render_server, renders
 from .config import Experiment, Profile
 from .errors import HarnessFailure
 
@@ -124,8 +124,9 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
           flush=True)
     started = time.monotonic()
     # Halves live in a directory named by the key, so a render killed after its first half
-    # resumes there (the renderer writes each half atomically: one that exists is complete);
-    # each half's commit is stamped beside it and recorded in the manifest.
+    # resumes there. A half is complete once its stamp (its commit, recorded in the manifest)
+    # is beside it: the stamp is written after the render succeeded, while a render that Ctrl-C
+    # stopped leaves a valid EXR of fewer samples and no stamp.
     scratch = paths.REFERENCE / f".halves-{wanted[:16]}"
     if not reuse:
         shutil.rmtree(scratch, ignore_errors=True)
@@ -134,10 +135,9 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
     provenances = []
     for half, seed in zip(halves, seeds):
         stamp = half.with_suffix(".json")
-        if half.exists():
+        if half.exists() and stamp.exists():
             print(f"[references] {paths.relative(half)}: rendered before, reused", flush=True)
-            origin = json.loads(stamp.read_text()) if stamp.exists() else {"git_commit": None}
-            provenances.append({"seed": seed, **origin, "resumed": True})
+            provenances.append({"seed": seed, **json.loads(stamp.read_text()), "resumed": True})
             continue
         origin = {"git_commit": provenance.git_commit(), "git_dirty": provenance.git_dirty()}
         renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
@@ -173,11 +173,15 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
 
 def ensure(experiments: list[Experiment], profile_name: str, force: bool = False) -> None:
     """Renders every reference that is missing or stale (or all of them with force)."""
-    for exp in experiments:
-        profile = exp.profiles[profile_name]
-        if force or status(exp, profile) != "ok":
-            # Forced (after a code change), a reference is rendered afresh, not copied.
-            render_reference(exp, profile, reuse=not force)
+    try:
+        for exp in experiments:
+            profile = exp.profiles[profile_name]
+            if force or status(exp, profile) != "ok":
+                # Forced (after a code change), a reference is rendered afresh, not copied.
+                render_reference(exp, profile, reuse=not force)
+    finally:
+        # Reaped now, the servers' CPU time is not charged to the experiment run next.
+        render_server.close_all()
 
 
 def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any], smallest_rmse: float,

@@ -22,8 +22,11 @@ class RenderServer:
     reply its exit status and messages. Its stderr is the harness's (a crash's report)."""
 
     def __init__(self) -> None:
-        self.proc = subprocess.Popen([str(paths.renderer_binary()), "serve"],
-                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        # One cached scene: a server renders one experiment's scene at a time, and every job
+        # slot holding several large scenes (environment maps) could exhaust memory.
+        self.proc = subprocess.Popen([str(paths.renderer_binary()), "serve", "--cached-scenes", "1"],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                                     encoding="utf-8")
 
     def request(self, args: Sequence[object]) -> tuple[int, list[str]]:
         assert self.proc.stdin and self.proc.stdout
@@ -37,9 +40,29 @@ class RenderServer:
         return reply["status"], reply["messages"]
 
     def close(self) -> None:
-        if self.proc.stdin:
-            self.proc.stdin.close()  # end of input: the server exits
+        """Ends the server at the end of its input; kills it if it does not exit in time."""
+        try:
+            if self.proc.stdin:
+                self.proc.stdin.close()
+        except OSError:  # it died with requests unread
+            pass
+        try:
+            self.proc.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            self.kill()
+        if self.proc.stdout:
+            self.proc.stdout.close()
+
+    def kill(self) -> None:
+        """Stops the server at once (an interrupted or failed request leaves it unusable)."""
+        self.proc.kill()
         self.proc.wait()
+        for pipe in (self.proc.stdin, self.proc.stdout):
+            try:
+                if pipe:
+                    pipe.close()
+            except OSError:
+                pass
 
 
 _lock = threading.Lock()
@@ -49,9 +72,10 @@ _idle: list[RenderServer] = []
 def _take() -> RenderServer:
     with _lock:
         server = _idle.pop() if _idle else None
-        if server is None or server.proc.poll() is not None:
-            server = RenderServer()
-        return server
+    if server is not None and server.proc.poll() is not None:
+        server.close()  # exited while idle: release its pipes
+        server = None
+    return server or RenderServer()
 
 
 def _give_back(server: RenderServer, reusable: bool) -> None:
@@ -69,7 +93,7 @@ def render(args: Sequence[object]) -> None:
     try:
         status, messages = server.request(args)
     except BaseException:
-        _give_back(server, reusable=False)  # in an unknown state
+        server.kill()  # in an unknown state (Ctrl-C, a crash): nothing it writes is wanted
         raise
     # A render interrupted by Ctrl-C (130) ends its server.
     _give_back(server, reusable=status != 130)

@@ -29,8 +29,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Reporter = std::function<void(const std::string&)>;
-
 void printToStderr(const std::string& line) {
     std::fprintf(stderr, "%s\n", line.c_str());
 }
@@ -133,10 +131,10 @@ PreparedRender prepare(const RenderCommandOptions& o, SceneCache* scenes) {
 }
 
 // The process's peak resident memory so far (scene, acceleration structure, film and the
-// integrator's working memory such as TAIS's maps), in MiB: under `renderer serve`, the peak
-// over every render it has served. VmHWM, not getrusage's ru_maxrss: the kernel carries
-// ru_maxrss across exec, so it would include the memory of the (Python) process that forked
-// the renderer.
+// integrator's working memory such as TAIS's maps), in MiB; under `renderer serve`, which
+// resets it before each render, the peak during this render with the scenes it keeps. VmHWM,
+// not getrusage's ru_maxrss: the kernel carries ru_maxrss across exec, so it would include the
+// memory of the (Python) process that forked the renderer.
 double peakResidentMiB() {
     std::ifstream status("/proc/self/status");
     std::string line;
@@ -184,9 +182,10 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.channels"] = channels;
 }
 
-// Writes the EXR and the preview with SIGINT held back, so Ctrl-C cannot interrupt a write
-// half-way (the signal is delivered once the files are in place). The preview is encoded on
-// its own thread while the EXR is compressed, and written only after the EXR.
+// Writes the EXR and the preview with SIGINT held back on this thread (a first Ctrl-C only
+// sets the interrupt flag wherever it lands; a second one aborts, leaving at most a temporary
+// file, never a half-written output). The preview is encoded on its own thread while the EXR
+// is compressed, and written only after the EXR.
 void writeOutputs(const RenderCommandOptions& o, const fs::path& out, const ExrImage& image,
                   int threads) {
     sigset_t interrupt, previous;
@@ -252,6 +251,22 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
     return 0;
 }
 
+// The one-line summary of a finished render.
+std::string summaryLine(const RenderCommandOptions& o, const PreparedRender& p,
+                        const RenderStats& stats, int threads, double writeSeconds) {
+    const RenderSettings& settings = p.loaded.render;
+    char summary[512];
+    std::snprintf(
+        summary, sizeof summary,
+        "%s: %s, %dx%d, %u spp in %.2f s (%.2f Mrays/s, %.3f Msamples/s, %d threads)%s -> %s "
+        "(written in %.0f ms)",
+        o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width, settings.height,
+        stats.spp, stats.seconds, stats.rays.total() / stats.seconds * 1e-6,
+        double(stats.spp) * settings.width * settings.height / stats.seconds * 1e-6, threads,
+        stats.interrupted ? " [interrupted]" : "", p.out.c_str(), writeSeconds * 1e3);
+    return summary;
+}
+
 }  // namespace
 
 int runRenderCommand(const RenderCommandOptions& o, const RenderEnvironment& environment) {
@@ -303,17 +318,8 @@ int runRenderCommand(const RenderCommandOptions& o, const RenderEnvironment& env
         return 1;
     }
 
-    char summary[512];
-    std::snprintf(
-        summary, sizeof summary,
-        "%s: %s, %dx%d, %u spp in %.2f s (%.2f Mrays/s, %.3f Msamples/s, %d threads)%s -> %s "
-        "(written in %.0f ms)",
-        o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width, settings.height,
-        stats.spp, stats.seconds, stats.rays.total() / stats.seconds * 1e-6,
-        double(stats.spp) * settings.width * settings.height / stats.seconds * 1e-6, threads,
-        stats.interrupted ? " [interrupted]" : "", p.out.c_str(), writeSeconds * 1e3);
     bar.clear();
-    report(summary);
+    report(summaryLine(o, p, stats, threads, writeSeconds));
     if (stats.nonFiniteSamples > 0)
         report("warning: " + std::to_string(stats.nonFiniteSamples) +
                " non-finite samples were replaced by zero");

@@ -27,18 +27,21 @@ struct RenderCommandOptions {
     bool json = false;       // `renderer check --json`: the result as one JSON object on stdout
 };
 
+// Where a render reports and what it may reuse. Messages (errors, warnings, the summary) are
+// one line each, to stderr unless `report` is set; `renderer serve` passes its scene cache and
+// collects the lines for its reply.
+using Reporter = std::function<void(const std::string&)>;
+struct RenderEnvironment {
+    SceneCache* scenes = nullptr;
+    Reporter report;
+    bool progressBar = true;  // drawn on a terminal only
+};
+
 // Exit status: 0 done, 1 failure while rendering or writing, 2 bad input (nothing written),
 // 130 interrupted (a valid image of the samples reached was written). With checkOnly: 0 valid,
 // 2 bad input; with json as well, stdout holds {"valid": true, "integrator", "resolution",
 // "spp", "features", "sceneSha256"} or {"valid": false, "error": "invalid" | "missing_asset",
 // "pointer", "message"}.
-// Messages (errors, warnings, the summary) are one line each, to stderr unless `report` is
-// set. `renderer serve` passes its scene cache and collects the lines for its reply.
-struct RenderEnvironment {
-    SceneCache* scenes = nullptr;
-    std::function<void(const std::string&)> report;
-    bool progressBar = true;  // drawn on a terminal only
-};
 int runRenderCommand(const RenderCommandOptions& options,
                      const RenderEnvironment& environment = {});
 

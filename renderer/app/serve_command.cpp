@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "app/command_line.h"
+#include "app/interrupt.h"
 #include "app/render_command.h"
 #include "config/json_reader.h"
 
@@ -22,6 +24,13 @@ std::FILE* takeStdoutForReplies() {
     const int replies = ::dup(STDOUT_FILENO);
     if (replies < 0 || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) return nullptr;
     return ::fdopen(replies, "w");
+}
+
+// Resets the process's peak resident memory (VmHWM) to its current size, so that each served
+// render's renderer.peakMemoryMiB is the peak during that render (cached scenes included, as
+// they stay resident), not the peak over the renders served before it.
+void resetPeakMemory() {
+    std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 // The request's arguments, or a message saying why it is not a request.
@@ -53,6 +62,7 @@ int serveRequest(const std::string& line, SceneCache& scenes, std::vector<std::s
         return 2;
     }
     CLI::App command{"renderer render (served)"};
+    command.set_help_flag();  // --help is an unknown option here, not a request for text
     RenderCommandOptions options;
     addRenderOptions(&command, options);
     try {
@@ -65,6 +75,7 @@ int serveRequest(const std::string& line, SceneCache& scenes, std::vector<std::s
     environment.scenes = &scenes;
     environment.report = [&](const std::string& message) { messages.push_back(message); };
     environment.progressBar = false;
+    resetPeakMemory();
     return runRenderCommand(options, environment);
 }
 
@@ -77,19 +88,23 @@ int runServeCommand(const ServeOptions& options) {
         return 1;
     }
     SceneCache scenes(options.cachedScenes);
+    const std::atomic<bool>& interrupted = installInterruptHandler();
     std::string line;
-    while (std::getline(std::cin, line)) {
-        if (line.empty()) continue;
+    while (!interrupted && std::getline(std::cin, line)) {
         std::vector<std::string> messages;
         const int status = serveRequest(line, scenes, messages);
         const Json reply = {{"status", status}, {"messages", messages}};
-        std::fprintf(replies, "%s\n",
-                     reply.dump(-1, ' ', false, Json::error_handler_t::replace).c_str());
+        std::fprintf(
+            replies, "%s\n",
+            reply.dump(-1, ' ', /*ensure_ascii=*/true, Json::error_handler_t::replace).c_str());
         std::fflush(replies);
-        if (status == 130) break;  // interrupted: whoever sent the requests is stopping
     }
-    std::fclose(replies);
-    return 0;
+    const bool written = !std::ferror(replies);
+    if (std::fclose(replies) != 0 || !written) {
+        std::perror("renderer serve: cannot write its replies");
+        return 1;
+    }
+    return interrupted ? 130 : 0;  // Ctrl-C: whoever sent the requests is stopping
 }
 
 }  // namespace rr

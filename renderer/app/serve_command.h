@@ -5,8 +5,9 @@
 // harness running many renders of a few scenes pays process start-up, asset loading and
 // acceleration-structure builds once per scene rather than once per render; every render's
 // integrator is built afresh, and its outputs are those of `renderer render` with the same
-// arguments (tests/test_serve.py). Ends at the end of its input, or after a render that Ctrl-C
-// interrupted.
+// arguments (tests/test_serve.py). Every line gets a reply (an empty one is a bad request).
+// Ends at the end of its input (status 0), or after the request during which Ctrl-C came
+// (status 130).
 #pragma once
 
 #include <cstddef>

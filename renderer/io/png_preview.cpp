@@ -40,7 +40,11 @@ bool encodeRgb8(int width, int height, const uint8_t* pixels, PngSink* sink) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     if (!png) return false;
     png_infop info = png_create_info_struct(png);
-    if (!info || setjmp(png_jmpbuf(png))) {
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        return false;
+    }
+    if (setjmp(png_jmpbuf(png))) {  // a libpng error
         png_destroy_write_struct(&png, &info);
         return false;
     }

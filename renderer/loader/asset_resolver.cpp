@@ -22,6 +22,29 @@ AssetResolver AssetResolver::standard(const fs::path& sceneDirectory) {
 }
 
 std::optional<fs::path> AssetResolver::resolve(const std::string& relativePath) const {
+    if (!log_) return find(relativePath);
+    std::optional<AssetStamp> found = stamp(relativePath);
+    if (!found) return std::nullopt;
+    log_->push_back(*found);
+    return found->path;
+}
+
+std::optional<AssetStamp> AssetResolver::stamp(const std::string& name) const {
+    const std::optional<fs::path> path = find(name);
+    if (!path) return std::nullopt;
+    std::error_code size, time;
+    AssetStamp s{name, *path, fs::file_size(*path, size), fs::last_write_time(*path, time)};
+    if (size || time) return std::nullopt;  // vanished between the two looks
+    return s;
+}
+
+AssetResolver AssetResolver::recordingInto(std::vector<AssetStamp>* log) const {
+    AssetResolver recording(searchPath_);
+    recording.log_ = log;
+    return recording;
+}
+
+std::optional<fs::path> AssetResolver::find(const std::string& relativePath) const {
     const fs::path p(relativePath);
     if (p.is_absolute()) return fs::is_regular_file(p) ? std::optional(p) : std::nullopt;
     for (const fs::path& dir : searchPath_) {

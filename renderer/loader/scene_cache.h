@@ -8,9 +8,8 @@
 #include <list>
 #include <memory>
 #include <string>
-#include <utility>
+#include <vector>
 
-#include "config/json_reader.h"
 #include "loader/asset_resolver.h"
 #include "scene/scene.h"
 
@@ -20,19 +19,25 @@ class SceneCache {
   public:
     explicit SceneCache(size_t capacity) : capacity_(capacity) {}
 
-    // What identifies the built scene: the document without what only the integrator and the
-    // render schedule read (/integrator, /render/seed, /render/spp; /description, which
-    // nothing reads), and where its assets are found.
-    static std::string key(const Json& document, const AssetResolver& assets);
-
-    // The scene built for `key`, or null; a hit becomes the most recently used entry.
-    std::shared_ptr<const Scene> find(const std::string& key);
-    // Adds a scene, dropping the least recently used one beyond the capacity.
-    void insert(const std::string& key, std::shared_ptr<const Scene> scene);
+    // The scene built for `key` (scene_loader.cpp makes it from everything the scene is built
+    // from), or null; also null, and the entry dropped, when one of the scene's files now
+    // resolves elsewhere through `assets` or has changed. A hit becomes the most recently
+    // used entry.
+    std::shared_ptr<const Scene> find(const std::string& key, const AssetResolver& assets);
+    // Adds a scene built from the files `assets` names, dropping the least recently used
+    // entry beyond the capacity.
+    void insert(const std::string& key, std::shared_ptr<const Scene> scene,
+                std::vector<AssetStamp> assets);
 
   private:
+    struct Entry {
+        std::string key;
+        std::shared_ptr<const Scene> scene;
+        std::vector<AssetStamp> assets;
+    };
+
     size_t capacity_;
-    std::list<std::pair<std::string, std::shared_ptr<const Scene>>> entries_;  // most recent first
+    std::list<Entry> entries_;  // most recent first
 };
 
 }  // namespace rr

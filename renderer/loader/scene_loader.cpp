@@ -76,11 +76,28 @@ void readSceneObjects(ObjectReader& root, const RenderSettings& render, const As
 }
 
 // A cached scene was read from the same values: they are valid, only marked as read here.
+// The top-level keys readSceneObjects reads (camera and shapes required).
+constexpr const char* kSceneObjectKeys[] = {"camera", "medium", "materials", "shapes", "lights"};
+
+// Marks the scene objects read without building them (the scene came from a cache).
 void skipSceneObjects(ObjectReader& root) {
-    root.raw("camera");
-    root.raw("shapes");
-    for (const char* key : {"medium", "materials", "lights"})
+    for (const char* key : kSceneObjectKeys)
         root.rawOptional(key);
+}
+
+// Everything the built scene depends on: the scene objects, the render settings the builder
+// takes (resolution, light selection) and the asset search path. Seeds, sample counts, path
+// lengths, samplers and integrators are not in it: they never reach the scene.
+std::string sceneCacheKey(const Json& document, const RenderSettings& render,
+                          const AssetResolver& assets) {
+    Json key = {{"resolution", {render.width, render.height}},
+                {"light_selection", int(render.lightSelection)},
+                {"search_path", Json::array()}};
+    for (const std::filesystem::path& dir : assets.searchPath())
+        key["search_path"].push_back(dir.string());
+    for (const char* name : kSceneObjectKeys)
+        if (const auto it = document.find(name); it != document.end()) key[name] = *it;
+    return key.dump();
 }
 
 }  // namespace
@@ -98,14 +115,15 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets, SceneCa
         render = readRenderSettings(rj, &path);
     }
 
-    const std::string cacheKey = cache ? SceneCache::key(document, assets) : std::string();
-    std::shared_ptr<const Scene> scene = cache ? cache->find(cacheKey) : nullptr;
+    const std::string cacheKey = cache ? sceneCacheKey(document, render, assets) : std::string();
+    std::shared_ptr<const Scene> scene = cache ? cache->find(cacheKey, assets) : nullptr;
     std::optional<SceneBuilder> builder;
+    std::vector<AssetStamp> files;  // the files a newly built scene is made from
     if (scene) {
         skipSceneObjects(root);
     } else {
         builder.emplace();
-        readSceneObjects(root, render, assets, *builder);
+        readSceneObjects(root, render, cache ? assets.recordingInto(&files) : assets, *builder);
     }
 
     BuiltIntegrator built;
@@ -129,7 +147,7 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets, SceneCa
         scene = builder->build(render.lightSelection);
         if (scene->lights().empty())
             throw ConfigError("", "the scene has no light: add an emitter shape or a light");
-        if (cache) cache->insert(cacheKey, scene);
+        if (cache) cache->insert(cacheKey, scene, std::move(files));
     }
     LoadedScene loaded;
     loaded.scene = std::move(scene);

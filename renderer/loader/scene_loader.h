@@ -28,9 +28,9 @@ struct LoadedScene {
     double prepareSeconds = 0;
 };
 
-// With a cache, a scene built before from the same values (SceneCache::key) is reused, and a
-// newly built one is added: the integrator is always built afresh, so renders share nothing
-// that a render changes.
+// With a cache, a scene built before from the same scene objects, resolution, light selection
+// and asset files is reused, and a newly built one is added: the integrator is always built
+// afresh, so renders share nothing that a render changes.
 LoadedScene loadScene(const Json& document, const AssetResolver& assets,
                       SceneCache* cache = nullptr);
 

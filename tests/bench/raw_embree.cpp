@@ -1,9 +1,10 @@
 // `make bench`: raw Embree's ray throughput on the bench dragon, the yardstick for the
-// renderer's. The dragon (202,520 triangles) and the ground as two triangles in one Embree
-// scene of the renderer's build quality, traced with rtcIntersect1 / rtcOccluded1 on 2 threads:
-//  - camera rays through jittered pixel positions of dragon_bench.json's camera (512 × 384);
+// renderer's. dragon_bench.json's geometry (the dragon, 202,520 triangles, and its quads: the
+// ground and the light) as triangles in one Embree scene of the renderer's build quality,
+// traced with rtcIntersect1 / rtcOccluded1 on 2 threads:
+//  - camera rays through jittered pixel positions of the scene's camera;
 //  - bounce rays from the camera rays' hits, cosine-distributed about the geometric normal;
-//  - shadow rays from those hits to uniform points on the scene's square light.
+//  - shadow rays from those hits to uniform points on the scene's emitting quad.
 // Rays are made before the clock starts; each kind is traced kPasses times and the median
 // pass is reported, as one JSON object on stdout: {"camera", "bounce", "shadow"} in Mrays/s.
 // Not a test (tests never time).
@@ -15,7 +16,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -30,9 +34,23 @@ namespace rr::test {
 namespace {
 
 constexpr int kThreads = 2, kPasses = 5, kRaysPerHit = 4;
-// dragon_bench.json's ground quad and light.
-const Vec3 kGroundCorner(-1, 0.0527f, 1), kGroundU(2, 0, 0), kGroundV(0, 0, -2);
-const Vec3 kLightCorner(-0.15f, 0.6f, -0.05f), kLightU(0.3f, 0, 0), kLightV(0, 0, 0.3f);
+
+struct Quad {
+    Vec3 corner, u, v;
+    bool emits;
+};
+
+// The scene file's quads, read from its JSON (the built Scene keeps no quads as such).
+std::vector<Quad> quadsOf(const std::filesystem::path& sceneFile) {
+    const nlohmann::json scene = nlohmann::json::parse(std::ifstream(sceneFile));
+    auto vec = [](const nlohmann::json& a) { return Vec3(a[0], a[1], a[2]); };
+    std::vector<Quad> quads;
+    for (const nlohmann::json& shape : scene.at("shapes"))
+        if (shape.at("type") == "quad")
+            quads.push_back({vec(shape.at("corner")), vec(shape.at("edge_u")),
+                             vec(shape.at("edge_v")), shape.contains("emission")});
+    return quads;
+}
 
 struct BenchRay {
     Vec3 origin, direction;
@@ -43,10 +61,11 @@ float uniform(uint64_t key, uint64_t index) {
     return toUnitFloat(pcgOutput(mixKey(key, index)));
 }
 
-RTCScene buildScene(RTCDevice device, const MeshData& dragon) {
+RTCScene buildScene(RTCDevice device, const MeshData& dragon, const std::vector<Quad>& quads) {
     RTCScene scene = rtcNewScene(device);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    const size_t vertices = dragon.positions.size() + 4, triangles = dragon.indices.size() / 3 + 2;
+    const size_t vertices = dragon.positions.size() + 4 * quads.size(),
+                 triangles = dragon.indices.size() / 3 + 2 * quads.size();
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
     auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
@@ -58,13 +77,15 @@ RTCScene buildScene(RTCDevice device, const MeshData& dragon) {
     };
     for (const Vec3& p : dragon.positions)
         addVertex(p);
-    const unsigned q = unsigned(n);
-    for (const Vec3& p : {kGroundCorner, kGroundCorner + kGroundU,
-                          kGroundCorner + kGroundU + kGroundV, kGroundCorner + kGroundV})
-        addVertex(p);
-    std::copy(dragon.indices.begin(), dragon.indices.end(), t);
-    const unsigned ground[6] = {q, q + 1, q + 2, q, q + 2, q + 3};
-    std::copy(ground, ground + 6, t + dragon.indices.size());
+    t = std::copy(dragon.indices.begin(), dragon.indices.end(), t);
+    for (const Quad& quad : quads) {
+        const unsigned q = unsigned(n);
+        for (const Vec3& p : {quad.corner, quad.corner + quad.u, quad.corner + quad.u + quad.v,
+                              quad.corner + quad.v})
+            addVertex(p);
+        const unsigned corners[6] = {q, q + 1, q + 2, q, q + 2, q + 3};
+        t = std::copy(corners, corners + 6, t);
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
@@ -138,8 +159,14 @@ int run() {
     if (!mesh) throw std::runtime_error("meshes/dragon_vrip_res2.ply not found");
     const MeshData dragon = loadMesh(*mesh);
 
+    const std::vector<Quad> quads =
+        quadsOf(std::filesystem::path(TEST_SCENES_DIR) / "dragon_bench.json");
+    const auto light =
+        std::find_if(quads.begin(), quads.end(), [](const Quad& q) { return q.emits; });
+    if (light == quads.end()) throw std::runtime_error("dragon_bench.json has no emitting quad");
+
     RTCDevice device = rtcNewDevice(nullptr);
-    RTCScene scene = buildScene(device, dragon);
+    RTCScene scene = buildScene(device, dragon, quads);
 
     const int width = loaded.render.width, height = loaded.render.height;
     std::vector<BenchRay> cameraRays;
@@ -159,7 +186,7 @@ int run() {
             bounceRays.push_back({hits[i].point, Frame(hits[i].normal).toWorld(local),
                                   std::numeric_limits<float>::infinity()});
             const Vec3 target =
-                kLightCorner + kLightU * uniform(key, 2) + kLightV * uniform(key, 3);
+                light->corner + light->u * uniform(key, 2) + light->v * uniform(key, 3);
             const Vec3 toLight = target - hits[i].point;
             const float distance = length(toLight);
             shadowRays.push_back({hits[i].point, toLight / distance, distance * 0.999f});
