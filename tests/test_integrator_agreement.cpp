@@ -83,19 +83,21 @@ TEST(IntegratorAgreement, PathMisEstimatorsAgree) {
 }
 
 // Russian roulette with a fixed survival probability (pbrt-v1's 0.5, `rr_survival`) from the
-// second vertex on estimates the same image as the throughput-driven default.
-TEST(IntegratorAgreement, FixedRussianRouletteAgreesWithTheDefault) {
-    const double z = zThreshold(sidakAlpha(0.01, 3));
+// second vertex on, and the throughput-driven rule played only below a threshold, estimate the
+// same image as the default.
+TEST(IntegratorAgreement, RussianRouletteRulesAgreeWithTheDefault) {
+    const double z = zThreshold(sidakAlpha(0.01, 3 * 3));  // 3 pairs × 3 channels
     std::vector<TestRender> renders;
     uint32_t seed = 50;
-    for (const char* roulette : {"", R"(,"rr_depth":2,"rr_survival":0.5)"}) {
+    for (const char* roulette :
+         {"", R"(,"rr_depth":2,"rr_survival":0.5)", R"(,"rr_depth":1,"rr_threshold":0.05)"}) {
         auto overrides = kSmall;
         overrides.push_back(std::string(R"(/render={"resolution":[32,32],"max_depth":8)") +
                             roulette + "}");
         renders.push_back(
             renderScene(loadSceneFile("cornell_spheres.json", overrides), 512, seed++));
     }
-    expectImageMeansAgreePairwise(renders, {"throughput roulette", "fixed 0.5"}, z,
+    expectImageMeansAgreePairwise(renders, {"throughput roulette", "fixed 0.5", "below 0.05"}, z,
                                   "cornell_spheres");
 }
 

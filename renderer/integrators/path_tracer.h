@@ -7,7 +7,9 @@
 //    Veach & Guibas 1995).
 // Path length: `maxDepth` scattering events, on surfaces or in media (−1: unlimited up to a
 // safety cap), Russian roulette from `rrDepth` on with survival probability
-// min(1, max throughput · Πη²), or a fixed `rrSurvival` (pbrt-v1's 0.5) when one is set.
+// q = min(1, max throughput · Πη²) wherever q < `rrThreshold` (a path whose throughput is
+// still large runs on untouched), or a fixed `rrSurvival` (pbrt-v1's 0.5) when one is set.
+// Every rule is unbiased: a surviving path is weighted by 1/q.
 //
 // Participating media (the volume rendering equation; Pharr, Jakob & Humphreys, PBR 3rd ed.,
 // ch. 15): every segment inside a medium samples a free-flight distance (the MediumDistance
@@ -36,8 +38,12 @@ struct PathSettings {
     // Russian roulette's survival probability: 0 for min(1, max throughput component × η²),
     // else this fixed value (pbrt-v1's path integrator: 0.5).
     float rrSurvival = 0;
+    // The throughput-driven survival probability is played only where it is below this (1:
+    // wherever it is below 1).
+    float rrThreshold = 1;
 
-    // Adds max_depth, rr_depth (and rr_survival when fixed) to an integrator's parameters.
+    // Adds max_depth, rr_depth (and rr_survival when fixed, rr_threshold when below 1) to an
+    // integrator's parameters.
     void addTo(nlohmann::json* parameters) const;
 };
 

@@ -41,6 +41,7 @@ class PathWalk {
           maxDepth_(settings.maxDepth < 0 ? PathTracer::kDepthCap : settings.maxDepth),
           rrDepth_(settings.rrDepth),
           rrSurvival_(settings.rrSurvival),
+          rrThreshold_(settings.rrThreshold),
           nee_(nee),
           pixel_(pixel),
           ray_(cameraRay),
@@ -94,6 +95,7 @@ class PathWalk {
     RayCounters& rays_;
     const int maxDepth_, rrDepth_;
     const float rrSurvival_;  // 0: throughput-driven
+    const float rrThreshold_;  // throughput-driven roulette only below this survival
     const DirectLightingEstimator& nee_;
     const PixelRecordSlot pixel_;
 
@@ -233,8 +235,11 @@ bool PathWalk<kMedia, Guide>::continuePath(const Ray& next, const LightReference
     if (depth_ + 1 >= rrDepth_) {
         const float survive =
             rrSurvival_ > 0 ? rrSurvival_ : std::min(1.0f, throughput_.maxComponent() * etaScale_);
-        if (sample_.get1D(Decision::RussianRoulette, vertex()) >= survive) return false;
-        throughput_ *= 1.0f / survive;
+        // The draw is indexed by its decision and vertex, so skipping it changes no other.
+        if (survive < rrThreshold_ || rrSurvival_ > 0) {
+            if (sample_.get1D(Decision::RussianRoulette, vertex()) >= survive) return false;
+            throughput_ *= 1.0f / survive;
+        }
     }
     ++depth_;
     ++rays_.extension;

@@ -40,6 +40,15 @@ RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
         // A positive double that rounds to 0 in float would silently mean "no fixed survival".
         if (!(path->rrSurvival > 0)) j.fail("rr_survival", "too small to be a probability");
     }
+    if (j.has("rr_threshold")) {
+        path->rrThreshold =
+            static_cast<float>(j.getNumber("rr_threshold", Range{0, 1, true, false}));
+        if (!(path->rrThreshold > 0)) j.fail("rr_threshold", "too small to be a probability");
+        if (path->rrSurvival > 0)
+            j.fail("rr_threshold",
+                   "applies to the throughput-driven survival probability; "
+                   "rr_survival fixes it instead");
+    }
     r.lightSelection = j.getChoice("light_selection", {"power", "uniform"}, "power") == "uniform"
                            ? LightSelection::Uniform
                            : LightSelection::Power;
