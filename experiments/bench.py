@@ -15,7 +15,6 @@ Efficiency is 1/(mean pixel variance of the mean × render-loop seconds), from t
 variance channels: higher is better, comparable between versions of one scene and integrator.
 Usage: bench.py [BUILD_DIR] (default build)."""
 import json
-import os
 import statistics
 import subprocess
 import sys
@@ -23,8 +22,7 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-import OpenImageIO as oiio
+from render_stats import read_render
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = Path(sys.argv[1] if len(sys.argv) > 1 else ROOT / "build")
@@ -48,21 +46,6 @@ def timed(args: list[object]) -> tuple[float, float, str]:
     return wall, int(peak.split()[-1]) / 1024, errors
 
 
-def metadata(exr: Path) -> tuple[dict[str, float], float]:
-    """The render's numeric metadata, and the mean over pixels and channels of the variance
-    of the pixel mean."""
-    image = oiio.ImageInput.open(str(exr))
-    spec = image.spec()
-    pixels = image.read_image(oiio.FLOAT)
-    image.close()
-    names = list(spec.channelnames)
-    variance = np.mean([pixels[..., names.index(f"variance.{c}")] for c in "RGB"])
-    values = {a.name: a.value for a in spec.extra_attribs
-              if a.name.startswith("renderer.") and isinstance(a.value, (int, float))}
-    values["samples"] = values["renderer.spp"] * spec.width * spec.height
-    return values, float(variance)
-
-
 def written_ms(summary: str) -> float:
     return float(summary.rsplit("(written in ", 1)[1].split(" ms", 1)[0])
 
@@ -82,7 +65,7 @@ def default_scene(scratch: Path) -> None:
     out = scratch / "default.exr"
     wall, rss, errors = timed([RENDERER, "render", DEFAULT_SCENE, "--resolution", "512x512",
                                "--spp", "64", "--threads", "2", "--out", out])
-    meta, variance = metadata(out)
+    meta, variance = read_render(out)
     seconds = meta["renderer.renderTime"]
     outside = wall - seconds
     print("default scene (cornell_spheres), path_mis, 512x512, 64 spp, 2 threads:")
@@ -107,7 +90,7 @@ def dragon(scratch: Path) -> None:
         for _ in range(3):
             timed([RENDERER, "render", DRAGON, "--threads", threads, "--no-preview",
                    "--out", out])
-            runs.append(metadata(out))
+            runs.append(read_render(out))
         seconds = statistics.median(m["renderer.renderTime"] for m, _ in runs)
         meta, variance = runs[0]
         rays = {k: meta[f"renderer.rays.{k}"] for k in ("camera", "extension", "shadow")}

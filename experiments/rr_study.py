@@ -24,8 +24,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
-import OpenImageIO as oiio
+from render_stats import read_render
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = Path(sys.argv[1] if len(sys.argv) > 1 else ROOT / "build")
@@ -61,14 +60,9 @@ def render(scene: str, rule: str, seed: int, scratch: Path) -> tuple[float, floa
     if depth is not None:
         args += ["--set", f"/render/rr_depth={depth}"]
     subprocess.run([str(a) for a in args], check=True, capture_output=True)
-    image = oiio.ImageInput.open(str(out))
-    spec = image.spec()
-    pixels = image.read_image(oiio.FLOAT)
-    image.close()
+    values, variance = read_render(out)
     out.unlink()
-    names = list(spec.channelnames)
-    variance = float(np.mean([pixels[..., names.index(f"variance.{c}")] for c in "RGB"]))
-    return variance, float(spec.getattribute("renderer.renderTime"))
+    return variance, values["renderer.renderTime"]
 
 
 def interval(log_ratios: list[float]) -> tuple[float, float, float]:

@@ -75,7 +75,6 @@ void readSceneObjects(ObjectReader& root, const RenderSettings& render, const As
     }
 }
 
-// A cached scene was read from the same values: they are valid, only marked as read here.
 // The top-level keys readSceneObjects reads (camera and shapes required).
 constexpr const char* kSceneObjectKeys[] = {"camera", "medium", "materials", "shapes", "lights"};
 

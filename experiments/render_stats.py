@@ -1,0 +1,24 @@
+"""What `make bench` and `make rr-study` read from a render's EXR: its numeric metadata and
+the mean variance of its pixel means (from the renderer's own variance channels), the error
+of an unbiased render and the denominator of efficiency 1/(variance × time)."""
+from pathlib import Path
+
+import numpy as np
+import OpenImageIO as oiio
+
+
+def read_render(exr: Path) -> tuple[dict[str, float], float]:
+    """The render's numeric renderer.* metadata plus "samples" (spp × pixels), and the mean over
+    pixels and channels of the variance of the pixel mean."""
+    image = oiio.ImageInput.open(str(exr))
+    if image is None:
+        raise FileNotFoundError(f"cannot read {exr}: {oiio.geterror()}")
+    spec = image.spec()
+    pixels = image.read_image(oiio.FLOAT)
+    image.close()
+    names = list(spec.channelnames)
+    variance = np.mean([pixels[..., names.index(f"variance.{c}")] for c in "RGB"])
+    values = {a.name: a.value for a in spec.extra_attribs
+              if a.name.startswith("renderer.") and isinstance(a.value, (int, float))}
+    values["samples"] = values["renderer.spp"] * spec.width * spec.height
+    return values, float(variance)
