@@ -25,13 +25,15 @@ def file_name(exp: Experiment, profile: Profile) -> Path:
 
 
 def key(exp: Experiment, profile: Profile) -> str:
-    """What determines the reference image: the scene document it renders (after overrides,
-    with the reference integrator and the profile's resolution; whitespace and comments of
-    the file do not count) and its spp. A change makes the reference stale. Code changes do
-    not: after fixing an integrator, re-render with `make references FORCE=1`."""
+    """What determines the reference image: the estimand of the scene document it renders
+    (after overrides, with the reference integrator and the profile's resolution; without the
+    settings that change only how the image is estimated, such as Russian roulette or light
+    selection, and without the file's whitespace and comments) and its spp. A change makes the
+    reference stale. Code changes do not: after fixing an integrator, re-render with
+    `make references FORCE=1`."""
     spec = {
-        "scene_document_sha256": renders.check_scene(exp, profile,
-                                                     exp.reference_integrator).scene_sha256,
+        "scene_estimand_sha256": renders.check_scene(exp, profile,
+                                                     exp.reference_integrator).estimand_sha256,
         "spp": profile.reference_spp,
     }
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()

@@ -23,6 +23,9 @@ class SceneCheck:
     spp: int
     features: str
     scene_sha256: str  # of the document after overrides: what renders record as sceneSha256
+    # of its estimand: the document without the settings that change only how the image is
+    # estimated (description, spp, seed, sampler, light selection, roulette, light sampling)
+    estimand_sha256: str
 
 
 @dataclass(frozen=True)
@@ -58,7 +61,7 @@ def check(args: Sequence[object]) -> SceneCheck:
         raise SceneRejected(paths.relative(args[0]), answer["error"], answer["pointer"],
                             answer["message"])
     return SceneCheck(answer["integrator"], tuple(answer["resolution"]), answer["spp"],
-                      answer["features"], answer["sceneSha256"])
+                      answer["features"], answer["sceneSha256"], answer["estimandSha256"])
 
 
 def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:

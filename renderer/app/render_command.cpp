@@ -230,7 +230,8 @@ int reportBadInput(const RenderCommandOptions& o, const Reporter& report,
 
 // `renderer check`: the scene is valid. The document hash is what a render records as
 // renderer.sceneSha256: it identifies the scene after overrides, independent of the file's
-// whitespace and comments.
+// whitespace and comments. The estimand hash leaves out what changes only the estimator
+// (estimandOf): the harness's reference key.
 int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
     const RenderSettings& settings = p.loaded.render;
     const std::string features = featureList(p.loaded.scene->features());
@@ -241,7 +242,8 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
                              {"resolution", {settings.width, settings.height}},
                              {"spp", settings.spp},
                              {"features", features},
-                             {"sceneSha256", sceneSha}};
+                             {"sceneSha256", sceneSha},
+                             {"estimandSha256", sha256Hex(estimandOf(p.document).dump())}};
         std::printf("%s\n", result.dump().c_str());
     } else {
         std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n",

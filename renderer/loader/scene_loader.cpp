@@ -101,6 +101,21 @@ std::string sceneCacheKey(const Json& document, const RenderSettings& render,
 
 }  // namespace
 
+Json estimandOf(const Json& document) {
+    Json estimand = document;
+    if (!estimand.is_object()) return estimand;
+    estimand.erase("description");
+    if (const auto render = estimand.find("render");
+        render != estimand.end() && render->is_object())
+        for (const char* key : {"spp", "seed", "sampler", "light_selection", "rr_depth",
+                                "rr_survival", "rr_threshold"})
+            render->erase(key);
+    if (const auto lights = estimand.find("lights"); lights != estimand.end() && lights->is_array())
+        for (Json& light : *lights)
+            if (light.is_object()) light.erase("sampling");
+    return estimand;
+}
+
 LoadedScene loadScene(const Json& document, const AssetResolver& assets, SceneCache* cache) {
     ObjectReader root(document, "");
     root.getString("description", "");

@@ -55,6 +55,23 @@ class SceneCheckTest(unittest.TestCase):
         self.assertRegex(check.scene_sha256, r"^[0-9a-f]{64}$")
         self.assertNotEqual(renders.check([self.valid]).scene_sha256, check.scene_sha256)
 
+    def test_the_estimand_hash_ignores_only_how_the_image_is_estimated(self):
+        scene = self.write("with_render.json", {**SCENE, "render": {"max_depth": 4}})
+        base = renders.check([scene])
+        estimator_only = renders.check([
+            scene, "--set", "/render/rr_depth=1", "--set", "/render/rr_threshold=0.25",
+            "--set", "/render/light_selection=uniform", "--set", "/render/sampler=stratified",
+            "--set", '/description="another"'])
+        self.assertNotEqual(estimator_only.scene_sha256, base.scene_sha256)
+        self.assertEqual(estimator_only.estimand_sha256, base.estimand_sha256)
+        for image_changing in (["--set", "/render/max_depth=2"],
+                               ["--set", "/shapes/0/radius=0.4"],
+                               ["--resolution", "8x4"],
+                               ["--set", '/integrator={"type": "direct"}']):
+            with self.subTest(image_changing):
+                self.assertNotEqual(renders.check([scene, *image_changing]).estimand_sha256,
+                                    base.estimand_sha256)
+
     def test_an_absent_asset_is_told_apart_by_its_kind(self):
         e = self.rejection(self.absent)
         self.assertEqual((e.kind, e.pointer), (MISSING_ASSET, "/shapes/0/file"))

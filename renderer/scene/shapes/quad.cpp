@@ -1,5 +1,7 @@
 #include "scene/shapes/quad.h"
 
+#include <algorithm>
+
 #include "sampling/warps.h"
 
 namespace rr {
@@ -15,15 +17,18 @@ Quad::Quad(const Vec3& corner, const Vec3& edgeU, const Vec3& edgeV)
     errorScale_ = maxAbsComponent(corner) + maxAbsComponent(edgeU) + maxAbsComponent(edgeV);
 }
 
+// Two triangles rather than an Embree quad: Embree keeps one BVH per primitive type, so a quad
+// beside a triangle mesh (a ground under the dragon) made every ray traverse two hierarchies.
+// completeHit recomputes the hit from the ray either way.
 RTCGeometry Quad::createGeometry(RTCDevice device) const {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     const Vec3 vertices[4] = {corner_, corner_ + edgeU_, corner_ + edgeU_ + edgeV_,
                               corner_ + edgeV_};
     setVertexBuffers(g, vertices, 4);
     auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
-    for (unsigned i = 0; i < 4; ++i)
-        index[i] = i;
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), 2));
+    const unsigned corners[6] = {0, 1, 3, 2, 3, 1};
+    std::copy(corners, corners + 6, index);
     rtcCommitGeometry(g);
     return g;
 }
