@@ -4,15 +4,17 @@
 Every scene in configs/scenes that a path tracer renders (the default scene, the bench dragon,
 the TAIS scenes and PMC's caustic box) is rendered by path_mis under each rule at its own
 resolution and path length, 16 spp, one thread per render and two renders at once, with SEEDS
-seeds. A rule is the depth from which roulette is played (`rr_depth`; "scene" keeps the
-scene's own) and the survival probability below which it is played (`rr_threshold`; the
-survival probability is min(1, max throughput · η²) throughout). Every rule is unbiased, so
-the error of a render is its variance: efficiency = 1 / (mean over pixels and channels of the
-variance of the pixel mean, from the EXR's own channels × render-loop seconds).
+seeds. A rule is the depth from which roulette is played (`rr_depth`; "scene" is the depth the
+scene set before the default became "from vertex 1, below 0.25") and the survival probability
+below which it is played (`rr_threshold`; the survival probability is min(1, max throughput ·
+η²) throughout). Every rule is unbiased, so the error of a render is its variance: efficiency =
+1 / (mean over pixels and channels of the variance of the pixel mean, from the EXR's own
+channels × render-loop seconds).
 
-Renders of one seed share their random numbers, so each rule is compared with the current
-default paired by seed: the table gives the geometric mean over seeds of efficiency(rule) /
-efficiency(default) with a 95 % t-interval, per scene and as the geometric mean over scenes.
+Renders of one seed share their random numbers, so each rule is compared with the former
+default (the scene's depth, always) paired by seed: the table gives the geometric mean over
+seeds of efficiency(rule) / efficiency(former default) with a 95 % t-interval, per scene and
+as the geometric mean over scenes.
 Writes results/tables/rr_efficiency.{md,json}. Not a test: it times renders, on a quiet machine.
 Usage: rr_study.py [BUILD_DIR] (default build)."""
 import concurrent.futures
@@ -34,7 +36,16 @@ SCENES = ["cornell_spheres", "dragon_bench", "tais_fig4_bunny_box", "tais_fig5_m
           "tais_fig6_colour_wheel", "tais_fig7_glass_caustic", "tais_fig8_spot_lights",
           "tais_fig9_glass_reflections", "tais_fig10_fog_spots", "tais_fig11_env_glossy_plane",
           "tais_fig13_many_lights", "pmc_tab1_cornell_caustic"]
-# name → (rr_depth, or None for the scene's own; rr_threshold). The first is today's default.
+# The depths the scenes set until the default became rule "from vertex 1, below 0.25" (the
+# colour wheel set none: the former default, 4).
+FORMER_DEPTH = {"cornell_spheres": 4, "dragon_bench": 3, "tais_fig4_bunny_box": 3,
+                "tais_fig5_motion_spheres": 3, "tais_fig6_colour_wheel": 4,
+                "tais_fig7_glass_caustic": 5, "tais_fig8_spot_lights": 3,
+                "tais_fig9_glass_reflections": 5, "tais_fig10_fog_spots": 3,
+                "tais_fig11_env_glossy_plane": 3, "tais_fig13_many_lights": 3,
+                "pmc_tab1_cornell_caustic": 5}
+# name → (rr_depth, or None for the scene's former depth; rr_threshold). The first, the former
+# default, is what the others are compared with.
 RULES = {
     "scene depth, always": (None, 1.0),
     "scene depth, below 0.5": (None, 0.5),
@@ -44,7 +55,7 @@ RULES = {
     "from vertex 1, below 0.1": (1, 0.1),
     "from vertex 2, always": (2, 1.0),
 }
-DEFAULT_RULE = next(iter(RULES))
+FORMER_RULE = next(iter(RULES))
 SEEDS = 6
 SPP = 16
 T95 = {5: 2.571, 6: 2.447, 7: 2.365, 9: 2.262}  # two-sided 95 % t quantiles by degrees of freedom
@@ -56,9 +67,8 @@ def render(scene: str, rule: str, seed: int, scratch: Path) -> tuple[float, floa
     out = scratch / f"{scene}.{list(RULES).index(rule)}.{seed}.exr"
     args = [RENDERER, "render", ROOT / "configs" / "scenes" / f"{scene}.json", "--spp", SPP,
             "--seed", seed, "--threads", 1, "--no-preview", "--out", out,
-            "--set", f"/render/rr_threshold={threshold}"]
-    if depth is not None:
-        args += ["--set", f"/render/rr_depth={depth}"]
+            "--set", f"/render/rr_threshold={threshold}",
+            "--set", f"/render/rr_depth={FORMER_DEPTH[scene] if depth is None else depth}"]
     subprocess.run([str(a) for a in args], check=True, capture_output=True)
     values, variance = read_render(out)
     out.unlink()
@@ -90,7 +100,7 @@ def measure() -> dict[str, dict[str, list[tuple[float, float]]]]:
 def table(results) -> tuple[str, dict]:
     log_gain = {rule: {} for rule in RULES}
     for scene in SCENES:
-        base = results[scene][DEFAULT_RULE]
+        base = results[scene][FORMER_RULE]
         for rule in RULES:
             log_gain[rule][scene] = [math.log((vb * tb) / (v * t))
                                      for (v, t), (vb, tb) in zip(results[scene][rule], base)]
@@ -116,7 +126,7 @@ def main() -> None:
     results = measure()
     text, summary = table(results)
     TABLES.mkdir(parents=True, exist_ok=True)
-    header = (f"# Russian roulette rules: efficiency relative to `{DEFAULT_RULE}`\n\n"
+    header = (f"# Russian roulette rules: efficiency relative to `{FORMER_RULE}`\n\n"
               f"path_mis, each scene's resolution and path length, {SPP} spp, one thread per "
               f"render, {SEEDS} seeds; efficiency = 1 / (mean variance of the pixel mean × "
               "render-loop seconds), geometric mean over seeds of the ratio to the default "

@@ -82,23 +82,26 @@ TEST(IntegratorAgreement, PathMisEstimatorsAgree) {
         }
 }
 
-// Russian roulette with a fixed survival probability (pbrt-v1's 0.5, `rr_survival`) from the
-// second vertex on, and the throughput-driven rule played only below a threshold, estimate the
-// same image as the default.
-TEST(IntegratorAgreement, RussianRouletteRulesAgreeWithTheDefault) {
-    const double z = zThreshold(sidakAlpha(0.01, 3 * 3));  // 3 pairs × 3 channels
+// The default roulette (from the first vertex, only below survival 0.25), the throughput rule
+// played always from the fourth vertex (the former default), a fixed survival probability
+// (pbrt-v1's 0.5, `rr_survival`) from the second vertex, and the throughput rule only below 0.05
+// estimate the same image.
+TEST(IntegratorAgreement, RussianRouletteRulesAgreeWithEachOther) {
+    const double z = zThreshold(sidakAlpha(0.01, 6 * 3));  // 6 pairs × 3 channels
     std::vector<TestRender> renders;
     uint32_t seed = 50;
     for (const char* roulette :
-         {"", R"(,"rr_depth":2,"rr_survival":0.5)", R"(,"rr_depth":1,"rr_threshold":0.05)"}) {
+         {"", R"(,"rr_depth":4,"rr_threshold":1)", R"(,"rr_depth":2,"rr_survival":0.5)",
+          R"(,"rr_depth":1,"rr_threshold":0.05)"}) {
         auto overrides = kSmall;
         overrides.push_back(std::string(R"(/render={"resolution":[32,32],"max_depth":8)") +
                             roulette + "}");
         renders.push_back(
             renderScene(loadSceneFile("cornell_spheres.json", overrides), 512, seed++));
     }
-    expectImageMeansAgreePairwise(renders, {"throughput roulette", "fixed 0.5", "below 0.05"}, z,
-                                  "cornell_spheres");
+    expectImageMeansAgreePairwise(
+        renders, {"default", "throughput always from vertex 4", "fixed 0.5", "below 0.05"}, z,
+        "cornell_spheres");
 }
 
 // One implementation of next-event estimation: `path_mis` whose estimator samples no light is

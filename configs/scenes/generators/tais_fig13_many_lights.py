@@ -57,7 +57,7 @@ def lights():
 def scene():
     return {
         "description": DESCRIPTION,
-        "render": {"resolution": [384, 256], "spp": 128, "max_depth": 5, "rr_depth": 3},
+        "render": {"resolution": [384, 256], "spp": 128, "max_depth": 5},
         "integrator": {"type": "path_mis"},
         "camera": {"type": "thin_lens", "position": [0.35, 0.6, 2.5], "look_at": [-0.2, 0.55, 0],
                    "fov": 32, "aperture_radius": 0.06, "focus_distance": 2.55},
