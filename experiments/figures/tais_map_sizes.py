@@ -12,12 +12,12 @@ from harness.records import SPP, TechniqueBudget
 # (map name in the configs, experiment, the integrator key of its size, its default in the
 # renderer (TaisSettings in renderer/techniques/tais/tais_settings.h), unit)
 SWEEPS = [
-    ("time", "fig05_time", "time_cells", 128, " cells"),
-    ("scatter_distance", "fig10_scatter_distance", "scatter_distance_cells", 128, " cells"),
+    ("time", "fig05_time", "time_cells", 64, " cells"),
+    ("scatter_distance", "fig10_scatter_distance", "scatter_distance_cells", 64, " cells"),
     ("lens", "fig06_lens", "lens_size", 32, "² cells"),
     ("point_on_light", "fig11_point_on_light", "point_on_light_size", 32, "² cells"),
-    ("scatter_direction", "fig04_map_size", "scatter_direction_size", 32, "² cells"),
-    ("scatter_direction", "fig07_scatter_direction", "scatter_direction_size", 32, "² cells"),
+    ("scatter_direction", "fig04_map_size", "scatter_direction_size", 16, "² cells"),
+    ("scatter_direction", "fig07_scatter_direction", "scatter_direction_size", 16, "² cells"),
 ]
 
 

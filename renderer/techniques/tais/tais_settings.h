@@ -47,11 +47,17 @@ struct TaisSettings {
     // the scene before rendering).
     std::array<bool, kMapKinds> enabled{};
     bool automatic = true;
-    int timeCells = 128;
-    int scatterDistanceCells = 128;
+    // Map sizes, chosen over all figures from the sensitivity table
+    // (results/tables/tais_map_sizes.md, quick profile at e9438a2): 64 cells for both 1-D maps
+    // (the best scatter-distance size; tied with the best, 32, for time, where 128 lost
+    // significantly), 32² for the lens (16² and 64² lost by far) and the point on the light
+    // (tied with 16²), 16² for scatter directions (32² lost to 8² on fig. 4 and to 16², within
+    // its interval, on fig. 7).
+    int timeCells = 64;
+    int scatterDistanceCells = 64;
     int lensSize = 32;  // 2-D maps: size × size cells
     int pointOnLightSize = 32;
-    int scatterDirectionSize = 32;
+    int scatterDirectionSize = 16;
     int scatterDirectionBounces = 1;  // fig. 14: a second map for the second bounce
     int bifurcationVertices = 8;      // path vertices with a reflect/transmit entry each
     // Path vertices whose next-event estimation has its own light-selection entries (beyond
