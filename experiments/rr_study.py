@@ -129,7 +129,7 @@ def main() -> None:
     header = (f"# Russian roulette rules: efficiency relative to `{FORMER_RULE}`\n\n"
               f"path_mis, each scene's resolution and path length, {SPP} spp, one thread per "
               f"render, {SEEDS} seeds; efficiency = 1 / (mean variance of the pixel mean × "
-              "render-loop seconds), geometric mean over seeds of the ratio to the default "
+              "render-loop seconds), geometric mean over seeds of the ratio to the former default "
               "rule paired by seed, with its 95 % interval. Made by experiments/rr_study.py.\n\n")
     (TABLES / "rr_efficiency.md").write_text(header + text + "\n")
     raw = {scene: {rule: [{"variance": v, "seconds": t} for v, t in runs]

@@ -236,6 +236,7 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
     const RenderSettings& settings = p.loaded.render;
     const std::string features = featureList(p.loaded.scene->features());
     const std::string sceneSha = sha256Hex(p.document.dump());
+    const std::string estimandSha = sha256Hex(estimandOf(p.document).dump());
     if (o.json) {
         const Json result = {{"valid", true},
                              {"integrator", p.loaded.integrator->name()},
@@ -243,12 +244,14 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
                              {"spp", settings.spp},
                              {"features", features},
                              {"sceneSha256", sceneSha},
-                             {"estimandSha256", sha256Hex(estimandOf(p.document).dump())}};
+                             {"estimandSha256", estimandSha}};
         std::printf("%s\n", result.dump().c_str());
     } else {
-        std::printf("%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n",
-                    o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width,
-                    settings.height, settings.spp, features.c_str(), sceneSha.c_str());
+        std::printf(
+            "%s: valid (%s, %dx%d, %u spp, features: %s)\nscene sha256 %s\n"
+            "estimand sha256 %s\n",
+            o.scene.c_str(), p.loaded.integrator->name().c_str(), settings.width, settings.height,
+            settings.spp, features.c_str(), sceneSha.c_str(), estimandSha.c_str());
     }
     return 0;
 }

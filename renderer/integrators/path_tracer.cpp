@@ -14,8 +14,10 @@ std::unique_ptr<PathTracer> PathTracer::withoutNextEventEstimation(const PathSet
 void PathSettings::addTo(nlohmann::json* parameters) const {
     (*parameters)["max_depth"] = maxDepth;
     (*parameters)["rr_depth"] = rrDepth;
-    if (rrSurvival > 0) (*parameters)["rr_survival"] = rrSurvival;
-    if (rrThreshold < 1) (*parameters)["rr_threshold"] = rrThreshold;
+    if (rrSurvival > 0)
+        (*parameters)["rr_survival"] = rrSurvival;
+    else
+        (*parameters)["rr_threshold"] = rrThreshold;
 }
 
 nlohmann::json PathTracer::parameters() const {

@@ -42,11 +42,11 @@ struct PathSettings {
     // else this fixed value (pbrt-v1's path integrator: 0.5).
     float rrSurvival = 0;
     // The throughput-driven survival probability is played only where it is below this (1:
-    // wherever it is below 1; not used with a fixed rrSurvival).
+    // wherever it is below 1). A fixed rrSurvival is played always and ignores it.
     float rrThreshold = 0.25f;
 
-    // Adds max_depth, rr_depth (and rr_survival when fixed, rr_threshold when below 1) to an
-    // integrator's parameters.
+    // Adds max_depth, rr_depth and the survival rule (rr_survival when fixed, else
+    // rr_threshold) to an integrator's parameters.
     void addTo(nlohmann::json* parameters) const;
 };
 

@@ -33,13 +33,15 @@ RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
     const std::string sampler =
         j.getChoice("sampler", {"independent", "stratified", "hammersley"}, "independent");
     parseSamplerType(sampler, &r.sampler);
-    path->maxDepth = static_cast<int>(j.getInt("max_depth", 16, Range::closed(-1, 100000)));
-    path->rrDepth = static_cast<int>(j.getInt("rr_depth", path->rrDepth, Range::closed(1, 100000)));
+    const PathSettings defaults;
+    path->maxDepth =
+        static_cast<int>(j.getInt("max_depth", defaults.maxDepth, Range::closed(-1, 100000)));
+    path->rrDepth =
+        static_cast<int>(j.getInt("rr_depth", defaults.rrDepth, Range::closed(1, 100000)));
     if (j.has("rr_survival")) {
         path->rrSurvival = static_cast<float>(j.getNumber("rr_survival", Range{0, 1, true, false}));
         // A positive double that rounds to 0 in float would silently mean "no fixed survival".
         if (!(path->rrSurvival > 0)) j.fail("rr_survival", "too small to be a probability");
-        path->rrThreshold = 1;  // a fixed survival is always played
     }
     if (j.has("rr_threshold")) {
         path->rrThreshold =

@@ -58,12 +58,16 @@ class SceneCheckTest(unittest.TestCase):
     def test_the_estimand_hash_ignores_only_how_the_image_is_estimated(self):
         scene = self.write("with_render.json", {**SCENE, "render": {"max_depth": 4}})
         base = renders.check([scene])
-        estimator_only = renders.check([
-            scene, "--set", "/render/rr_depth=1", "--set", "/render/rr_threshold=0.25",
-            "--set", "/render/light_selection=uniform", "--set", "/render/sampler=stratified",
-            "--set", '/description="another"'])
-        self.assertNotEqual(estimator_only.scene_sha256, base.scene_sha256)
-        self.assertEqual(estimator_only.estimand_sha256, base.estimand_sha256)
+        for estimator_only in (
+                ["--set", "/render/rr_depth=4", "--set", "/render/rr_threshold=1",
+                 "--set", "/render/light_selection=uniform", "--set", "/render/sampler=stratified",
+                 "--set", "/render/spp=7", "--set", "/render/seed=3",
+                 "--set", '/description="another"'],
+                ["--set", "/render/rr_survival=0.5"]):
+            with self.subTest(estimator_only):
+                check = renders.check([scene, *estimator_only])
+                self.assertNotEqual(check.scene_sha256, base.scene_sha256)
+                self.assertEqual(check.estimand_sha256, base.estimand_sha256)
         for image_changing in (["--set", "/render/max_depth=2"],
                                ["--set", "/shapes/0/radius=0.4"],
                                ["--resolution", "8x4"],

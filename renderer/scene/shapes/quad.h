@@ -1,5 +1,5 @@
 // Parallelogram corner + s·edgeU + t·edgeV, (s, t) ∈ [0,1]²; normal = edgeU × edgeV.
-// Intersected as an Embree quad; uv = (s, t).
+// Intersected as two Embree triangles; uv = (s, t).
 #pragma once
 
 #include "scene/shape.h"
