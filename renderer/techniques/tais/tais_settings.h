@@ -51,8 +51,9 @@ struct TaisSettings {
     // (results/tables/tais_map_sizes.md, quick profile at e9438a2): 64 cells for both 1-D maps
     // (the best scatter-distance size; tied with the best, 32, for time, where 128 lost
     // significantly), 32² for the lens (16² and 64² lost by far) and the point on the light
-    // (tied with 16²), 16² for scatter directions (32² lost to 8² on fig. 4 and to 16², within
-    // its interval, on fig. 7; fig. 4 has no 16² row: the paper's sizes there are 8², 32², 64²).
+    // (tied with 16²), 16² for scatter directions (the best of 8², 16², 32², 64² on fig. 4,
+    // ×1.02 [1.01, 1.03] against the paper's PT, measured after the choice; on fig. 7 32² lost
+    // to 16² within its interval).
     int timeCells = 64;
     int scatterDistanceCells = 64;
     int lensSize = 32;  // 2-D maps: size × size cells
