@@ -4,18 +4,14 @@ of an unbiased render and the denominator of efficiency 1/(variance × time)."""
 from pathlib import Path
 
 import numpy as np
-import OpenImageIO as oiio
+
+from harness.exr import read_exr
 
 
 def read_render(exr: Path) -> tuple[dict[str, float], float]:
     """The render's numeric renderer.* metadata plus "samples" (spp × pixels), and the mean over
     pixels and channels of the variance of the pixel mean."""
-    image = oiio.ImageInput.open(str(exr))
-    if image is None:
-        raise FileNotFoundError(f"cannot read {exr}: {oiio.geterror()}")
-    spec = image.spec()
-    pixels = image.read_image(oiio.FLOAT)
-    image.close()
+    spec, pixels = read_exr(exr)
     names = list(spec.channelnames)
     variance = np.mean([pixels[..., names.index(f"variance.{c}")] for c in "RGB"])
     values = {a.name: a.value for a in spec.extra_attribs

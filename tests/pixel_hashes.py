@@ -20,9 +20,9 @@ import subprocess
 import sys
 import tempfile
 
-import OpenImageIO as oiio
-
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "experiments"))
+from harness.exr import read_exr  # noqa: E402
 RENDERER = os.environ.get("RENDERER_BINARY", str(ROOT / "build" / "bin" / "renderer"))
 
 CONFIGURATIONS = {
@@ -41,17 +41,6 @@ CONFIGURATIONS = {
     "path_mis_hammersley": ["--set", '/integrator={"type":"path_mis"}',
                             "--set", "/render/sampler=hammersley"],
 }
-
-
-def read_exr(exr):
-    """The EXR's spec (channel names, metadata) and its pixels as float32."""
-    image = oiio.ImageInput.open(str(exr))
-    if image is None:
-        raise RuntimeError(f"cannot read {exr}: {oiio.geterror()}")
-    spec = image.spec()
-    pixels = image.read_image(oiio.FLOAT)
-    image.close()
-    return spec, pixels
 
 
 def pixel_hash(exr):

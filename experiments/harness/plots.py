@@ -15,6 +15,7 @@ from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 from . import paths, records, tables  # noqa: E402
+from .exr import read_exr  # noqa: E402
 from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget  # noqa: E402
 
 
@@ -80,14 +81,7 @@ def convergence(doc: Results, out: Path) -> None:
 
 
 def read_rgb(file: Path) -> np.ndarray:
-    import OpenImageIO as oiio
-    image = oiio.ImageInput.open(str(file))
-    if image is None:
-        raise FileNotFoundError(file)
-    spec = image.spec()
-    pixels = image.read_image(0, 0, 0, 3, "float")
-    image.close()
-    return np.asarray(pixels).reshape(spec.height, spec.width, 3)
+    return read_exr(file, channels=3)[1]
 
 
 def _display(rgb: np.ndarray) -> np.ndarray:
