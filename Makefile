@@ -6,6 +6,8 @@ SHELL := /bin/bash
 
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 600
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 SCENE      ?= configs/scenes/cornell_spheres.json
 PROFILE    ?= quick
@@ -24,7 +26,10 @@ PACKAGES := g++ make cmake git pkg-config ca-certificates \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
             libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time
 
-.PHONY: deps configure build run render test asan bench rr-study assets references experiments \
+# `make fuzz` only: clang with libFuzzer, and the symbolizer for its reports.
+FUZZ_PACKAGES := clang-14 libclang-rt-14-dev llvm-14
+
+.PHONY: deps configure build run render test asan fuzz stress bench rr-study assets references experiments \
         tables plots reproduce previews fresh-check format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
@@ -88,6 +93,22 @@ asan: deps
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j$(JOBS)
 
+# Every technique on every stress scene (configs/stress/, scenes built to break numerics): no
+# NaN, no negative pixel, each mean agreeing with a reference by a block z-test;
+# results/tables/stress.md. STRESS_SPP (default 256), STRESS_ONLY=scene,scene.
+stress: build
+	$(PYTHON) experiments/stress.py $(BUILD)
+
+# libFuzzer (clang, with ASan and UBSan) over the scene loader and each asset reader (PLY, OBJ,
+# EXR, HDR), FUZZ_SECONDS per target, JOBS at a time; fails when a target found an input that
+# crashed, hung or rendered NaN. tests/fuzz/README.md: corpus, findings, regressions.
+fuzz: deps
+	@$(MAKE) --no-print-directory deps PACKAGES="$(FUZZ_PACKAGES)"
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DRENDERER_FUZZ=ON >/dev/null
+	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_scene fuzz_ply fuzz_obj fuzz_exr fuzz_hdr
+	tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(JOBS)
+
 # make test and make render in a minimal Debian 12 root (debootstrap, cached under ~/.cache)
 # holding a clean clone of HEAD and ../shared, with nothing installed by hand but make.
 # Needs root; prints each step's time. About 15 minutes on 2 cores.
@@ -115,4 +136,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

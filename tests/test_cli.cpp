@@ -283,6 +283,38 @@ TEST(Cli, InterruptSavesAValidImageOfTheSamplesReached) {
         ASSERT_EQ(s, float(spp));
 }
 
+// SIGKILL at moments spread over a whole render and its writing (a fixed sequence of delays,
+// some landing while the EXR and PNG are written): each output is then either the previous
+// render's file or a complete new one of the same pixels; never a partial file.
+TEST(Cli, KilledRenderLeavesTheOldOutputOrACompleteNewOne) {
+    const fs::path dir = scratchDirectory();
+    const fs::path out = dir / "k.exr", png = dir / "k.png";
+    const std::vector<std::string> args = {"render", kScene, "--resolution", "256x256",
+                                           "--spp",  "1",    "--out",        out.string()};
+    const auto began = std::chrono::steady_clock::now();
+    ASSERT_EQ(run(args, dir), 0);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    const std::string oldExr = readText(out), oldPng = readText(png);
+    const ExrImage reference = readExr(out);
+    constexpr int kKills = 12;
+    for (int k = 0; k < kKills; ++k) {
+        const ChildProcess p = start(args, dir);
+        // Delays from 0 to 1.2× a whole run, in a fixed order.
+        std::this_thread::sleep_for(std::chrono::duration<double>(seconds * 1.2 * k / kKills));
+        kill(p.pid, SIGKILL);
+        wait(p);
+        const std::string exr = readText(out);
+        if (exr != oldExr) {
+            // Only a complete render replaces the file: the same pixels (same seed and spp).
+            const ExrImage image = readExr(out);
+            ASSERT_EQ(image.channels.at("R"), reference.channels.at("R")) << "kill " << k;
+        }
+        // The preview of the same pixels is the same bytes, old or new.
+        ASSERT_EQ(readText(png), oldPng) << "kill " << k;
+    }
+}
+
 TEST(Cli, ThreadCountDoesNotChangePixels) {
     const fs::path dir = scratchDirectory();
     for (const char* t : {"1", "2"})

@@ -11,11 +11,20 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "io/atomic_write.h"
 
 namespace rr {
+
+namespace {
+// The most values (pixels × channels) readExr allocates for: 2^28 floats, 1 GiB. A larger
+// image is a damaged header, not one this project reads.
+constexpr int64_t kMaxValues = int64_t(1) << 28;
+}  // namespace
 
 void writeExr(const std::filesystem::path& file, const ExrImage& image, int threads) {
     // OpenEXR's thread pool is process-wide: widen it for this write only.
@@ -59,18 +68,24 @@ ExrImage readExr(const std::filesystem::path& file) {
     try {
         Imf::InputFile in(file.c_str());
         const Imath::Box2i window = in.header().dataWindow();
+        // In 64 bits: a damaged header's window can span more than an int holds.
+        const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+        const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+        int64_t channels = 0;
+        for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+            ++channels;
+        if (width < 1 || height < 1 || width * height > kMaxValues / std::max<int64_t>(channels, 1))
+            throw std::runtime_error("data window of " + std::to_string(width) + " x " +
+                                     std::to_string(height) + " pixels and " +
+                                     std::to_string(channels) + " channels is too large");
         ExrImage image;
-        image.width = window.max.x - window.min.x + 1;
-        image.height = window.max.y - window.min.y + 1;
-        const size_t n = size_t(image.width) * image.height;
+        image.width = static_cast<int>(width);
+        image.height = static_cast<int>(height);
         Imf::FrameBuffer frame;
         for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) {
             std::vector<float>& data = image.channels[it.name()];
-            data.resize(n);
-            char* base = reinterpret_cast<char*>(data.data()) -
-                         (window.min.x + size_t(window.min.y) * image.width) * sizeof(float);
-            frame.insert(it.name(),
-                         Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * image.width));
+            data.resize(size_t(width * height));
+            frame.insert(it.name(), Imf::Slice::Make(Imf::FLOAT, data.data(), window));
         }
         in.setFrameBuffer(frame);
         in.readPixels(window.min.y, window.max.y);

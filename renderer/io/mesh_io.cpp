@@ -5,6 +5,7 @@
 
 #include <assimp/Importer.hpp>
 #include <stdexcept>
+#include <string>
 
 namespace rr {
 
@@ -12,8 +13,11 @@ MeshData loadMesh(const std::filesystem::path& file) {
     Assimp::Importer importer;
     // Joining identical vertices restores sharing (Assimp un-indexes some formats), which
     // smooth normals need; degenerate faces are dropped.
+    // Validation rejects faces indexing past their mesh's vertices, among other inconsistencies
+    // a damaged file can leave.
     const aiScene* scene =
-        importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+        importer.ReadFile(file.string(), aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                             aiProcess_JoinIdenticalVertices |
                                              aiProcess_FindDegenerates | aiProcess_SortByPType);
     if (!scene || !scene->mRootNode)
         throw std::runtime_error("cannot read mesh " + file.string() + ": " +
@@ -26,12 +30,20 @@ MeshData loadMesh(const std::filesystem::path& file) {
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
             data.positions.emplace_back(p.x, p.y, p.z);
+            if (!isFinite(data.positions.back()))
+                throw std::runtime_error("mesh " + file.string() + ": vertex " +
+                                         std::to_string(data.positions.size() - 1) +
+                                         " is not finite");
         }
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
-            for (int k = 0; k < 3; ++k)
+            for (int k = 0; k < 3; ++k) {
+                if (face.mIndices[k] >= mesh->mNumVertices)
+                    throw std::runtime_error("mesh " + file.string() + ": face " +
+                                             std::to_string(f) + " indexes a missing vertex");
                 data.indices.push_back(base + face.mIndices[k]);
+            }
         }
     }
     if (data.indices.empty())

@@ -51,6 +51,8 @@ RgbImage readRadiance(const fs::path& file) {
     if (!data || !stbi_is_hdr(file.c_str()))
         throw std::runtime_error("cannot read Radiance HDR " + file.string() + ": " +
                                  (data ? "not a Radiance file" : stbi_failure_reason()));
+    if (width < 1 || height < 1)  // stb accepts a header of 0 pixels across
+        throw std::runtime_error("Radiance HDR " + file.string() + " has no pixels");
     RgbImage image{width, height, std::vector<Rgb>(size_t(width) * height)};
     const float* p = data.get();
     for (Rgb& pixel : image.pixels) {

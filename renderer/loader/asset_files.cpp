@@ -24,8 +24,10 @@ RgbImage readImageAsset(ObjectReader& json, const std::string& key, const AssetR
     } catch (const std::exception& e) {
         json.fail(key, e.what());
     }
+    // Texels are radiance or reflectance: a negative one means nothing either.
     for (const Rgb& p : image.pixels)
-        if (!p.isFinite()) json.fail(key, path.string() + " holds non-finite values");
+        if (!p.isFinite() || p.r < 0 || p.g < 0 || p.b < 0)
+            json.fail(key, path.string() + " holds negative or non-finite values");
     return image;
 }
 

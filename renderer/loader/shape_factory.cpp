@@ -77,8 +77,10 @@ std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const Asset
     } catch (const std::exception& e) {
         j.fail("file", e.what());
     }
-    for (Vec3& p : data.positions)
+    for (Vec3& p : data.positions) {
         p = t.point(p);
+        if (!isFinite(p)) j.fail("transform", "moves the mesh's vertices beyond float range");
+    }
     if (normals == "smooth") data.normals = TriangleMesh::smoothNormals(data);
     return std::make_unique<TriangleMesh>(std::move(data));
 }

@@ -68,6 +68,21 @@ TEST(Reservoir, AllZeroWeightsKeepNothing) {
     EXPECT_EQ(reservoir.offered(), 2u);
 }
 
+// Found by `make stress` (the `ris` integrator crashed on a scene with a point light): for a
+// denormal weight (ĝ/p = 1e-44) the selection u times the weight rounds to the weight in float,
+// so the first candidate of positive weight was not kept and the reservoir, non-empty, held a
+// default candidate.
+TEST(Reservoir, KeepsTheFirstCandidateWhateverTheSelection) {
+    for (float w : {9.8e-45f, 5.6e-45f, 1e-30f, 1.0f, 1e30f})
+        for (float u : {0.5f, 0.95f, std::nextafter(1.0f, 0.0f)}) {
+            ris::WeightedReservoir<int> reservoir;
+            reservoir.offer(7, 0, 0.5f);
+            reservoir.offer(8, w, u);
+            ASSERT_FALSE(reservoir.empty());
+            EXPECT_EQ(reservoir.kept(), 8) << w << " " << u;
+        }
+}
+
 // Fig. 1's problem: p uniform on [0, π/2], ĝ(θ) = cos θ + sin⁴(6θ). Resampling M = 2 candidates
 // gives Y the density p_Y(y) = p(y)·w(y)·E[2 / (w(y) + w(X))], X ~ p, w = ĝ/p (the reservoir keeps
 // y with probability w(y)/(w(y) + w(X)), and either candidate can be y). 10⁶ draws of Y must

@@ -17,8 +17,12 @@ class WeightedReservoir {
     void offer(const Candidate& candidate, float w, float u) {
         ++offered_;
         if (!(w > 0)) return;
+        // The first candidate of positive weight is kept whatever u is: for a denormal weight
+        // (a light that barely reaches the point) u·w rounds to w in float, and the reservoir
+        // would be non-empty holding no candidate.
+        const bool first = !(weightSum_ > 0);
         weightSum_ += w;
-        if (u * weightSum_ < w) kept_ = candidate;
+        if (first || u * weightSum_ < w) kept_ = candidate;
     }
 
     bool empty() const { return !(weightSum_ > 0); }
