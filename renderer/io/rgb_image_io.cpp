@@ -1,13 +1,12 @@
 #include "io/rgb_image_io.h"
 
-#include <stb/stb_image.h>
-
 #include <algorithm>
 #include <cctype>
 #include <memory>
 #include <stdexcept>
 
 #include "io/exr_io.h"
+#include "io/radiance_io.h"
 
 namespace rr {
 
@@ -38,26 +37,6 @@ RgbImage readExrColour(const fs::path& file) {
             image.pixels[i] = Rgb((*y)[i]);
     } else {
         throw std::runtime_error("EXR " + file.string() + " has neither R, G, B nor Y channels");
-    }
-    return image;
-}
-
-// stbi_loadf returns linear values for Radiance files (it would apply a display gamma to 8-bit
-// formats, which is why only .hdr is routed here).
-RgbImage readRadiance(const fs::path& file) {
-    int width = 0, height = 0, components = 0;
-    const std::unique_ptr<float, void (*)(void*)> data(
-        stbi_loadf(file.c_str(), &width, &height, &components, 3), stbi_image_free);
-    if (!data || !stbi_is_hdr(file.c_str()))
-        throw std::runtime_error("cannot read Radiance HDR " + file.string() + ": " +
-                                 (data ? "not a Radiance file" : stbi_failure_reason()));
-    if (width < 1 || height < 1)  // stb accepts a header of 0 pixels across
-        throw std::runtime_error("Radiance HDR " + file.string() + " has no pixels");
-    RgbImage image{width, height, std::vector<Rgb>(size_t(width) * height)};
-    const float* p = data.get();
-    for (Rgb& pixel : image.pixels) {
-        pixel = Rgb(p[0], p[1], p[2]);
-        p += 3;
     }
     return image;
 }

@@ -1,5 +1,5 @@
 // Reading colour images for textures and environment maps: OpenEXR (channels R, G, B, or a
-// single Y as grey) through exr_io, and Radiance RGBE (.hdr) through Debian's stb_image.
+// single Y as grey) through exr_io, and Radiance RGBE (.hdr) through radiance_io.
 #pragma once
 
 #include <filesystem>

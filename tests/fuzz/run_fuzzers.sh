@@ -9,7 +9,7 @@ set -eu
 build=$1 seconds=$2 jobs=$3
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
-targets="scene ply obj exr hdr"
+targets=${FUZZ_TARGETS:-"scene ply obj exr hdr"}  # FUZZ_TARGETS: a subset
 symbolizer=/usr/lib/llvm-14/bin/llvm-symbolizer
 export ASAN_OPTIONS="detect_leaks=1:external_symbolizer_path=$symbolizer"
 export LSAN_OPTIONS="suppressions=$here/lsan.supp"
