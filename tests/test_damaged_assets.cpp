@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/exr_io.h"
+#include "support/asset_scene.h"
 #include "support/child_process.h"
 #include "support/scratch.h"
 
@@ -72,24 +73,6 @@ void PrintTo(const DamagedAsset& d, std::ostream* os) {
     *os << d.what;
 }
 
-bool isMesh(const std::string& file) {
-    return file.ends_with(".ply") || file.ends_with(".obj");
-}
-
-std::string sceneUsing(const std::string& file) {
-    const std::string camera =
-        R"("camera": { "position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 60 },
-        "materials": { "m": { "type": "lambert", "albedo": 0.5 } },)";
-    if (isMesh(file))
-        return "{" + camera + R"("shapes": [ { "type": "mesh", "file": ")" + file +
-               R"(", "material": "m" } ],
-        "lights": [ { "type": "point", "position": [0, 2, 2], "intensity": 5 } ] })";
-    return "{" + camera + R"("shapes": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.5,
-        "material": "m" } ],
-        "lights": [ { "type": "environment", "file": ")" +
-           file + R"(", "layout": "latlong" } ] })";
-}
-
 class DamagedAssets : public ::testing::TestWithParam<DamagedAsset> {};
 
 TEST_P(DamagedAssets, AreBadInputNamingTheFileAndWriteNothing) {
@@ -97,7 +80,7 @@ TEST_P(DamagedAssets, AreBadInputNamingTheFileAndWriteNothing) {
     const DamagedAsset& asset = GetParam();
     const std::string bytes = asset.bytes(dir);
     std::ofstream(dir / asset.file, std::ios::binary) << bytes;
-    std::ofstream(dir / "scene.json") << sceneUsing(asset.file);
+    std::ofstream(dir / "scene.json") << sceneUsingAsset(asset.file);
     const ProcessResult r =
         runProcess(RENDERER_BINARY,
                    {"render", (dir / "scene.json").string(), "--resolution", "4x4", "--spp", "1",
@@ -119,7 +102,7 @@ TEST(DamagedAssetControls, TheIntactFilesRender) {
     };
     for (const auto& [file, bytes] : intact) {
         std::ofstream(dir / file, std::ios::binary) << bytes;
-        std::ofstream(dir / "scene.json") << sceneUsing(file);
+        std::ofstream(dir / "scene.json") << sceneUsingAsset(file);
         const ProcessResult r =
             runProcess(RENDERER_BINARY,
                        {"render", (dir / "scene.json").string(), "--resolution", "4x4", "--spp",

@@ -4,19 +4,16 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
-#include <cctype>
 #include <stdexcept>
 #include <string>
 
+#include "io/file_extension.h"
 #include "io/ply_header.h"
 
 namespace rr {
 
 MeshData loadMesh(const std::filesystem::path& file) {
-    std::string extension = file.extension().string();
-    for (char& c : extension)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".ply") checkPlyHeader(file);
+    if (lowercaseExtension(file) == ".ply") checkPlyHeader(file);
     Assimp::Importer importer;
     // Joining identical vertices restores sharing (Assimp un-indexes some formats), which
     // smooth normals need; degenerate faces are dropped.

@@ -1,11 +1,10 @@
 #include "io/rgb_image_io.h"
 
-#include <algorithm>
-#include <cctype>
 #include <memory>
 #include <stdexcept>
 
 #include "io/exr_io.h"
+#include "io/file_extension.h"
 #include "io/radiance_io.h"
 
 namespace rr {
@@ -13,13 +12,6 @@ namespace rr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lowercaseExtension(const fs::path& file) {
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return extension;
-}
 
 RgbImage readExrColour(const fs::path& file) {
     ExrImage exr = readExr(file);
