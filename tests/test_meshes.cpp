@@ -1,4 +1,4 @@
-// Mesh import (PLY and OBJ through Assimp) and triangle geometry in renders.
+// Mesh import (PLY by io/ply_reader, OBJ through Assimp) and triangle geometry in renders.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -8,12 +8,13 @@
 #include <string>
 
 #include "io/file_extension.h"
-#include "io/ply_header.h"
+#include "io/ply_reader.h"
 
 namespace rr {
 
-MeshData loadMesh(const std::filesystem::path& file) {
-    if (lowercaseExtension(file) == ".ply") checkPlyHeader(file);
+namespace {
+
+MeshData readWithAssimp(const std::filesystem::path& file) {
     Assimp::Importer importer;
     // Joining identical vertices restores sharing (Assimp un-indexes some formats), which
     // smooth normals need; degenerate faces are dropped.
@@ -34,10 +35,6 @@ MeshData loadMesh(const std::filesystem::path& file) {
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
             data.positions.emplace_back(p.x, p.y, p.z);
-            if (!isFinite(data.positions.back()))
-                throw std::runtime_error("mesh " + file.string() + ": vertex " +
-                                         std::to_string(data.positions.size() - 1) +
-                                         " is not finite");
         }
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
@@ -50,6 +47,17 @@ MeshData loadMesh(const std::filesystem::path& file) {
             }
         }
     }
+    return data;
+}
+
+}  // namespace
+
+MeshData loadMesh(const std::filesystem::path& file) {
+    MeshData data = lowercaseExtension(file) == ".ply" ? readPly(file) : readWithAssimp(file);
+    for (size_t v = 0; v < data.positions.size(); ++v)
+        if (!isFinite(data.positions[v]))
+            throw std::runtime_error("mesh " + file.string() + ": vertex " + std::to_string(v) +
+                                     " is not finite");
     if (data.indices.empty())
         throw std::runtime_error("mesh " + file.string() + " has no triangles");
     return data;

@@ -1,4 +1,4 @@
-// Triangle meshes from PLY and OBJ files, through Assimp.
+// Triangle meshes from PLY files (our own reader, io/ply_reader) and OBJ files (Assimp).
 #pragma once
 
 #include <filesystem>
@@ -8,7 +8,8 @@
 
 namespace rr {
 
-// Throws std::runtime_error with Assimp's message when the file cannot be read.
+// Throws std::runtime_error naming the file and what is wrong when it cannot be read, has no
+// triangles or a vertex that is not finite.
 MeshData loadMesh(const std::filesystem::path& file);
 
 }  // namespace rr
