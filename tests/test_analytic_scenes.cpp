@@ -129,8 +129,9 @@ TEST_P(AnalyticScenes, EmissiveQuadSeenDirectlyRendersItsExactRadiance) {
 // camera's, so the camera's shutter mapping is under test too.
 using MovingHitTest = std::function<bool(const Ray&, float time)>;
 
-double coveredFraction(const Camera& camera, int px, int py, const MovingHitTest& hits) {
+double coveredFraction(const Scene& scene, int px, int py, const MovingHitTest& hits) {
     constexpr int kFilm = 12, kTime = 48;
+    const Camera& camera = scene.camera();
     const float open = camera.settings().shutterOpen, close = camera.settings().shutterClose;
     int covered = 0;
     for (int a = 0; a < kFilm; ++a)
@@ -138,8 +139,8 @@ double coveredFraction(const Camera& camera, int px, int py, const MovingHitTest
             for (int t = 0; t < kTime; ++t) {
                 const Vec2 film(px + (a + 0.5f) / kFilm, py + (b + 0.5f) / kFilm);
                 const float u = (t + 0.5f) / kTime;
-                covered +=
-                    hits(camera.generateRay(film, Vec2(0.5f, 0.5f), u), open + u * (close - open));
+                const Ray ray = inFileSpace(scene, camera.generateRay(film, Vec2(0.5f, 0.5f), u));
+                covered += hits(ray, open + u * (close - open));
             }
     return double(covered) / (kFilm * kFilm * kTime);
 }
@@ -147,13 +148,12 @@ double coveredFraction(const Camera& camera, int px, int py, const MovingHitTest
 void expectMotionBlurMatchesQuadrature(const LoadedScene& scene, double radiance,
                                        const MovingHitTest& hits) {
     const TestRender r = renderScene(scene, 256);
-    const Camera& camera = scene.scene->camera();
     ASSERT_TRUE(scene.scene->features().motionBlur);
     double expectedTotal = 0;
     Film expected(r.film.width(), r.film.height());
     for (int y = 0; y < r.film.height(); ++y)
         for (int x = 0; x < r.film.width(); ++x) {
-            const double f = radiance * coveredFraction(camera, x, y, hits);
+            const double f = radiance * coveredFraction(*scene.scene, x, y, hits);
             expected.add(x, y, Rgb(float(f)));
             expectedTotal += f;
         }
@@ -222,16 +222,19 @@ TEST_P(AnalyticScenes, GlassSphereInUniformEmitterConservesRadianceWithZeroVaria
 
 // Expected pixel values by quadrature over the pixel footprint, for a camera looking at the
 // floor y = 0 (every pixel must see it): `radiance(p)` is the closed-form value at floor point p.
-Film floorQuadrature(const Camera& camera, const std::function<double(const Vec3&)>& radiance) {
+Film floorQuadrature(const Scene& scene, const std::function<double(const Vec3&)>& radiance) {
     constexpr int kSub = 12;
+    const Camera& camera = scene.camera();
     Film expected(camera.width(), camera.height());
     for (int y = 0; y < camera.height(); ++y)
         for (int x = 0; x < camera.width(); ++x) {
             double sum = 0;
             for (int a = 0; a < kSub; ++a)
                 for (int b = 0; b < kSub; ++b) {
-                    const Ray ray = camera.generateRay(
-                        Vec2(x + (a + 0.5f) / kSub, y + (b + 0.5f) / kSub), Vec2(0.5f, 0.5f), 0);
+                    const Ray ray = inFileSpace(
+                        scene,
+                        camera.generateRay(Vec2(x + (a + 0.5f) / kSub, y + (b + 0.5f) / kSub),
+                                           Vec2(0.5f, 0.5f), 0));
                     const double t = -double(ray.origin.y) / ray.direction.y;
                     sum += radiance(ray.origin + ray.direction * float(t));
                 }
@@ -315,7 +318,7 @@ TEST_P(LightOverFloor, SquareLightCloseOverAFloorMatchesTheFormFactor) {
     doc["shapes"].push_back(light);
     const LoadedScene scene = loadSceneJson(doc);
     const TestRender r = renderScene(scene, 256);
-    const Film expected = floorQuadrature(scene.scene->camera(), [&](const Vec3& p) {
+    const Film expected = floorQuadrature(*scene.scene, [&](const Vec3& p) {
         return albedo * radiance * rectangleFormFactor(p.x, p.z, -a, a, -a, a, h);
     });
     expectMatchesQuadrature(r.film, expected, integrator + " at scale " + std::to_string(scale));
@@ -362,7 +365,7 @@ TEST(PointLightOverFloor, MatchesTheInverseSquareLaw) {
                             "edge_v": [0, 0, -20], "material": {"type": "lambert", "albedo": 0.6}}],
                 "lights": [{"type": "point", "position": [0.3, 0.8, -0.2], "intensity": 5}]})");
         const TestRender r = renderScene(scene, 16);
-        const Film expected = floorQuadrature(scene.scene->camera(), [](const Vec3& p) {
+        const Film expected = floorQuadrature(*scene.scene, [](const Vec3& p) {
             const Vec3 d = Vec3(0.3f, 0.8f, -0.2f) - p;
             return 0.6 / M_PI * 5.0 * (d.y / length(d)) / lengthSquared(d);
         });

@@ -52,7 +52,8 @@ fs::path writeMap(const std::string& name, int width, int height, const PixelFun
 // in a scene of radius 1.
 std::unique_ptr<EnvironmentMap> loadMap(const Json& description) {
     ObjectReader reader(description, "/lights/0");
-    std::unique_ptr<Light> light = makeLight(reader, AssetResolver::standard(TEST_SCENES_DIR));
+    std::unique_ptr<Light> light =
+        makeLight(reader, AssetResolver::standard(TEST_SCENES_DIR), Transform());
     auto* map = dynamic_cast<EnvironmentMap*>(light.get());
     EXPECT_NE(map, nullptr);
     light.release();
@@ -678,7 +679,7 @@ TEST(EnvironmentMaps, MissingFileNamesTheFileAndTheSearchPath) {
     const Json j{{"type", "environment"}, {"file", "envmaps/nothing.hdr"}, {"layout", "probe"}};
     ObjectReader reader(j, "/lights/0");
     try {
-        makeLight(reader, AssetResolver({"/nonexistent/dir"}));
+        makeLight(reader, AssetResolver({"/nonexistent/dir"}), Transform());
         FAIL() << "no error";
     } catch (const ConfigError& e) {
         const std::string m = e.what();
@@ -693,7 +694,7 @@ TEST(EnvironmentMaps, ProbeMustBeSquare) {
     const Json j{{"type", "environment"}, {"file", file.string()}, {"layout", "probe"}};
     ObjectReader reader(j, "/lights/0");
     try {
-        makeLight(reader, AssetResolver({}));
+        makeLight(reader, AssetResolver({}), Transform());
         FAIL() << "no error";
     } catch (const ConfigError& e) {
         EXPECT_EQ(e.pointer(), "/lights/0/layout") << e.what();

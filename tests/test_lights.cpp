@@ -36,11 +36,13 @@ const double kAlpha = kChi2.alpha();
 constexpr int kSamples = 1000000;
 
 // A scene with the given shapes (JSON array body) and lights, no camera-facing requirements.
+// The camera is at the origin, so that rendering space (loader/camera_reader.h) is the scene
+// file's and the tests can ask the lights about the points they name.
 LoadedScene makeScene(const std::string& shapes, const std::string& lights = "",
                       const std::string& selection = "power") {
     return loadSceneText(R"({"render": {"resolution": [4, 4], "light_selection": ")" + selection +
                          R"("},
-        "camera": {"position": [0, 0, 20], "look_at": [0, 0, 0]},
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1]},
         "shapes": [)" + shapes +
                          "]" + (lights.empty() ? "" : R"(, "lights": [)" + lights + "]") + "}");
 }

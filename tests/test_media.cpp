@@ -309,16 +309,19 @@ TEST(PhaseChi2NegativeControl, ForwardSamplesRejectBackwardDensity) {
 
 // Expected pixel values by quadrature over each pixel's footprint: `radiance(ray)` is the
 // closed-form value along a camera ray.
-Film pixelQuadrature(const Camera& camera, const std::function<Rgb(const Ray&)>& radiance,
+Film pixelQuadrature(const Scene& scene, const std::function<Rgb(const Ray&)>& radiance,
                      int kSub = 12) {
+    const Camera& camera = scene.camera();
     Film expected(camera.width(), camera.height());
     for (int y = 0; y < camera.height(); ++y)
         for (int x = 0; x < camera.width(); ++x) {
             double sum[3] = {0, 0, 0};
             for (int a = 0; a < kSub; ++a)
                 for (int b = 0; b < kSub; ++b) {
-                    const Rgb l = radiance(camera.generateRay(
-                        Vec2(x + (a + 0.5f) / kSub, y + (b + 0.5f) / kSub), Vec2(0.5f, 0.5f), 0));
+                    const Rgb l = radiance(inFileSpace(
+                        scene,
+                        camera.generateRay(Vec2(x + (a + 0.5f) / kSub, y + (b + 0.5f) / kSub),
+                                           Vec2(0.5f, 0.5f), 0)));
                     for (int c = 0; c < 3; ++c)
                         sum[c] += l[c];
                 }
@@ -328,8 +331,8 @@ Film pixelQuadrature(const Camera& camera, const std::function<Rgb(const Ray&)>&
     return expected;
 }
 
-Film constantFilm(const Camera& camera, const Rgb& value) {
-    return pixelQuadrature(camera, [&](const Ray&) { return value; });
+Film constantFilm(const Scene& scene, const Rgb& value) {
+    return pixelQuadrature(scene, [&](const Ray&) { return value; });
 }
 
 // The image mean of each channel and the mean of channel 0 over each of 4×4 blocks, z-tested
@@ -370,7 +373,7 @@ TEST_P(MediaScenes, AbsorbingSceneMediumAttenuatesAnEmitter) {
                     "edge_v": [0, 20, 0], "emission": {"radiance": [2, 3, 4]}}]})");
     ASSERT_TRUE(scene.scene->features().media);
     const TestRender r = renderScene(scene, 256);
-    const Film expected = pixelQuadrature(scene.scene->camera(), [](const Ray& ray) {
+    const Film expected = pixelQuadrature(*scene.scene, [](const Ray& ray) {
         const double d = (ray.origin.z + 1) / -ray.direction.z;
         return Rgb(float(2 * std::exp(-0.2 * d)), float(3 * std::exp(-0.5 * d)),
                    float(4 * std::exp(-1.0 * d)));
@@ -388,7 +391,7 @@ TEST_P(MediaScenes, AbsorbingFogSphereAttenuatesByItsChord) {
           {"type": "quad", "corner": [-10, -10, -2], "edge_u": [20, 0, 0], "edge_v": [0, 20, 0],
            "emission": {"radiance": [2, 3, 4]}}]})");
     const TestRender r = renderScene(scene, 256);
-    const Film expected = pixelQuadrature(scene.scene->camera(), [](const Ray& ray) {
+    const Film expected = pixelQuadrature(*scene.scene, [](const Ray& ray) {
         const double b = dot(ray.origin, ray.direction);
         const double chord = 2 * std::sqrt(std::max(0.0, b * b - (lengthSquared(ray.origin) - 1)));
         return Rgb(float(2 * std::exp(-0.7 * chord)), float(3 * std::exp(-1.2 * chord)),
@@ -409,7 +412,7 @@ TEST_P(MediaScenes, ScatteringFogSphereInUniformEmitterRendersLe) {
            "interior_medium": {"sigma_s": [1, 2, 4],
                                "phase": {"type": "henyey_greenstein", "g": 0.6}}}]})");
     const TestRender r = renderScene(scene, 128);
-    expectImageMatches(r.film, constantFilm(scene.scene->camera(), Rgb(1.5f, 1, 0.5f)),
+    expectImageMatches(r.film, constantFilm(*scene.scene, Rgb(1.5f, 1, 0.5f)),
                        "scattering fog sphere in a uniform emitter");
 }
 
@@ -421,7 +424,7 @@ TEST_P(MediaScenes, ScatteringFogSphereUnderConstantEnvironmentRendersLe) {
         "shapes": [{"type": "sphere", "radius": 1, "interior_medium": {"sigma_s": 2.5}}],
         "lights": [{"type": "environment", "radiance": [1.5, 1, 0.5]}]})");
     const TestRender r = renderScene(scene, 128);
-    expectImageMatches(r.film, constantFilm(scene.scene->camera(), Rgb(1.5f, 1, 0.5f)),
+    expectImageMatches(r.film, constantFilm(*scene.scene, Rgb(1.5f, 1, 0.5f)),
                        "scattering fog sphere under an environment");
 }
 
@@ -433,7 +436,7 @@ TEST_P(MediaScenes, ScatteringSceneMediumInUniformEmitterRendersLe) {
         "shapes": [{"type": "sphere", "radius": 5,
                     "emission": {"radiance": [1.5, 1, 0.5], "two_sided": true}}]})");
     const TestRender r = renderScene(scene, 128);
-    expectImageMatches(r.film, constantFilm(scene.scene->camera(), Rgb(1.5f, 1, 0.5f)),
+    expectImageMatches(r.film, constantFilm(*scene.scene, Rgb(1.5f, 1, 0.5f)),
                        "scattering scene medium in a uniform emitter");
 }
 
@@ -447,7 +450,7 @@ TEST_P(MediaScenes, FogFilledGlassSphereInUniformEmitterRendersLe) {
           {"type": "sphere", "radius": 1, "material": {"type": "dielectric", "ior": 1.5},
            "interior_medium": {"sigma_s": 2}}]})");
     const TestRender r = renderScene(scene, 128);
-    expectImageMatches(r.film, constantFilm(scene.scene->camera(), Rgb(1.5f)),
+    expectImageMatches(r.film, constantFilm(*scene.scene, Rgb(1.5f)),
                        "fog-filled glass sphere in a uniform emitter");
 }
 
@@ -461,7 +464,7 @@ TEST_P(MediaScenes, SceneMediumExtinguishesInfiniteLightsExceptTransparentChanne
         "shapes": [],
         "lights": [{"type": "environment", "radiance": [1, 2, 3]}]})");
     const TestRender r = renderScene(scene, 128);
-    expectImageMatches(r.film, constantFilm(scene.scene->camera(), Rgb(1, 0, 0)),
+    expectImageMatches(r.film, constantFilm(*scene.scene, Rgb(1, 0, 0)),
                        "environment behind an infinite medium");
 }
 
@@ -483,7 +486,7 @@ TEST(MediaPointLight, DiffuseFloorInAbsorbingFogMatchesClosedForm) {
         "lights": [{"type": "point", "position": [0.3, 0.8, -0.2], "intensity": 5}]})");
     const TestRender r = renderScene(scene, 64);
     const Vec3 light(0.3f, 0.8f, -0.2f);
-    const Film expected = pixelQuadrature(scene.scene->camera(), [&](const Ray& ray) {
+    const Film expected = pixelQuadrature(*scene.scene, [&](const Ray& ray) {
         const double t = -double(ray.origin.y) / ray.direction.y;
         const Vec3 p = ray.origin + ray.direction * float(t), d = light - p;
         const double dist = length(d), irradiance = 5.0 * (d.y / dist) / (dist * dist);
@@ -514,7 +517,7 @@ TEST(MediaPointLight, SingleScatteringMatchesQuadrature) {
     const Vec3 light(2, 0.5f, -3);
     const double sigmaS[3] = {0.3, 0.5, 0.8}, g = 0.7;
     const Film expected = pixelQuadrature(
-        scene.scene->camera(),
+        *scene.scene,
         [&](const Ray& ray) {
             // Simpson's rule on [0, 60]: e^{−0.35·60} < 1e-9; the light stays ≥ 0.8 away.
             constexpr int n = 4000;

@@ -308,9 +308,10 @@ TEST(TextureRanges, MalformedTextureObjects) {
 // A sphere's uv poles lie on its own z axis, which its transform's rotation turns: rotated by
 // −90° about x, the pole faces +y, so a ray down onto the top hits v = 0, and on the equator the
 // tangent (the u axis of anisotropic materials) runs along the parallel, perpendicular to y.
+// (The camera is at the origin, so that rendering space is the file's.)
 TEST(SphereCoordinates, FollowTheSphereRotation) {
     const LoadedScene scene = loadSceneText(R"({
-        "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1]},
         "shapes": [{"type": "sphere", "radius": 1, "material": {"type": "lambert"},
                     "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90},
                                   "translate": [0, 0, 0]}}],

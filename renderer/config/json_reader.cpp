@@ -181,18 +181,27 @@ std::vector<double> ObjectReader::getNumbers(const std::string& key, size_t coun
     return checkedNumbers(raw(key), pointerTo(key), count, range);
 }
 
-std::vector<Vec3> ObjectReader::getVec3Array(const std::string& key, size_t minCount) {
+std::vector<Vec3d> ObjectReader::getPointArray(const std::string& key, size_t minCount) {
     const Json& v = raw(key);
     if (!v.is_array() || v.size() < minCount)
         fail(key,
              "expected an array of at least " + std::to_string(minCount) + " points [x, y, z]");
-    std::vector<Vec3> out;
+    std::vector<Vec3d> out;
     for (size_t i = 0; i < v.size(); ++i) {
         const auto c =
             checkedNumbers(v[i], pointerTo(key) + "/" + std::to_string(i), 3, Range::any());
-        out.emplace_back(float(c[0]), float(c[1]), float(c[2]));
+        out.push_back({c[0], c[1], c[2]});
     }
     return out;
+}
+
+Vec3d ObjectReader::getPoint(const std::string& key) {
+    const auto v = getNumbers(key, 3);
+    return {v[0], v[1], v[2]};
+}
+
+Vec3d ObjectReader::getPoint(const std::string& key, const Vec3d& fallback) {
+    return has(key) ? getPoint(key) : fallback;
 }
 
 Vec3 ObjectReader::getVec3(const std::string& key) {

@@ -82,8 +82,11 @@ class ObjectReader {
     Rgb getRgb(const std::string& key, const Rgb& fallback, Range range = Range::nonNegative());
     std::vector<double> getNumbers(const std::string& key, size_t count,
                                    Range range = Range::any());
-    // An array of at least `minCount` points [x, y, z].
-    std::vector<Vec3> getVec3Array(const std::string& key, size_t minCount);
+    // A position [x, y, z], kept in double for the move into rendering space.
+    Vec3d getPoint(const std::string& key);
+    Vec3d getPoint(const std::string& key, const Vec3d& fallback);
+    // An array of at least `minCount` positions [x, y, z].
+    std::vector<Vec3d> getPointArray(const std::string& key, size_t minCount);
 
     // Throws for any key that was not read: call after reading everything.
     void finish() const;

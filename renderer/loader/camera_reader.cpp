@@ -2,11 +2,13 @@
 
 namespace rr {
 
-CameraSettings readCamera(ObjectReader& j) {
+CameraReading readCamera(ObjectReader& j) {
     CameraSettings c;
     const std::string type = j.getChoice("type", {"pinhole", "thin_lens"}, "pinhole");
-    c.position = j.getVec3("position");
-    c.lookAt = j.getVec3("look_at");
+    const Vec3d position = j.getPoint("position");
+    const Transform worldToRender = Transform::translate(-position);
+    c.position = Vec3(0.0f);
+    c.lookAt = worldToRender.point(j.getPoint("look_at"));
     c.up = j.getVec3("up", Vec3(0, 1, 0));
     c.verticalFovDegrees = j.getFloat("fov", 40.0f, Range::open(0, 180));
     const Vec3 forward = c.lookAt - c.position;
@@ -27,7 +29,7 @@ CameraSettings readCamera(ObjectReader& j) {
         c.shutterClose = static_cast<float>(s[1]);
     }
     j.finish();
-    return c;
+    return {c, position, worldToRender};
 }
 
 }  // namespace rr

@@ -30,12 +30,16 @@ std::unique_ptr<Material> makeMaterial(ObjectReader& json, const AssetResolver& 
 // A participating medium: {"sigma_a", "sigma_s", "phase"} (configs/README.md, "Media").
 std::unique_ptr<Medium> makeMedium(ObjectReader& json);
 
-// Shapes are built in world space: `transform` is applied to their defining points.
+// Shapes are built in rendering space: `transform` (the shape's placement in the scene file,
+// then the file's move into rendering space, loader/camera_reader.h) is applied to their
+// defining points.
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
                                  const AssetResolver& assets);
 
-// Environment maps are found through `assets`.
-std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets);
+// Environment maps are found through `assets`; point and spot lights are placed by
+// `worldToRender` (loader/camera_reader.h).
+std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets,
+                                 const Transform& worldToRender);
 
 // Every integrator and direct-lighting estimator type: the core ones and the techniques'.
 const TechniqueRegistry& techniqueRegistry();

@@ -16,9 +16,10 @@ namespace {
 
 constexpr float kRadiansPerDegree = kPi / 180;
 
-std::unique_ptr<Light> makeSpot(ObjectReader& j, const AssetResolver&) {
-    const Vec3 position = j.getVec3("position");
-    const Vec3 axis = j.getVec3("look_at") - position;
+std::unique_ptr<Light> makeSpot(ObjectReader& j, const AssetResolver&, const Transform& place) {
+    const Vec3d from = j.getPoint("position");
+    const Vec3 position = place.point(from);
+    const Vec3 axis = toFloat(j.getPoint("look_at") - from);
     if (!(length(axis) > 0)) j.fail("look_at", "must differ from position");
     const Rgb intensity = j.getRgb("intensity");
     const float cone = j.getFloat("cone_angle", Range{0, 90, true, false});
@@ -39,7 +40,7 @@ Frame readRotation(ObjectReader& j) {
     r.n = t.vector(Vec3(0, 0, 1));
     float scale = 0;
     const bool rotation = t.isSimilarity(&scale) && std::abs(scale - 1) < 1e-4f &&
-                          dot(cross(r.s, r.t), r.n) > 0 && t.point(Vec3(0.0f)) == Vec3(0.0f);
+                          dot(cross(r.s, r.t), r.n) > 0 && t.point(Vec3d{}) == Vec3(0.0f);
     if (!rotation) j.fail("transform", "an environment map takes rotations only");
     r.s = normalize(r.s);
     r.t = normalize(r.t);
@@ -84,7 +85,8 @@ std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& 
 }
 
 // {"radiance": L} is a constant environment, {"file": …} a map.
-std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& assets) {
+std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& assets,
+                                       const Transform&) {
     if (j.has("file") == j.has("radiance"))
         j.fail("radiance",
                "an environment needs either \"radiance\" (constant) or \"file\" "
@@ -95,16 +97,18 @@ std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& ass
 
 }  // namespace
 
-std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets) {
-    static const TypeTable<Light, const AssetResolver&> table{
+std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets,
+                                 const Transform& worldToRender) {
+    static const TypeTable<Light, const AssetResolver&, const Transform&> table{
         {"point",
-         [](ObjectReader& j, const AssetResolver&) {
-             return std::make_unique<PointLight>(j.getVec3("position"), j.getRgb("intensity"));
+         [](ObjectReader& j, const AssetResolver&, const Transform& place) {
+             return std::make_unique<PointLight>(place.point(j.getPoint("position")),
+                                                 j.getRgb("intensity"));
          }},
         {"spot", makeSpot},
         {"environment", makeEnvironment},
     };
-    return buildByType(json, "light", table, assets);
+    return buildByType(json, "light", table, assets, worldToRender);
 }
 
 }  // namespace rr

@@ -44,12 +44,10 @@ std::string firstMediumPointer(const Json& document) {
 // Reads the camera, media, materials, shapes and lights into `builder`.
 void readSceneObjects(ObjectReader& root, const RenderSettings& render, const AssetResolver& assets,
                       SceneBuilder& builder) {
-    CameraSettings camera;
-    {
-        ObjectReader cj(root.raw("camera"), root.pointerTo("camera"));
-        camera = readCamera(cj);
-    }
-    builder.setCamera(camera, render.width, render.height);
+    ObjectReader cj(root.raw("camera"), root.pointerTo("camera"));
+    const CameraReading view = readCamera(cj);
+    builder.setCamera(view.camera, render.width, render.height);
+    builder.setRenderOrigin(view.origin);
 
     if (const Json* m = root.rawOptional("medium")) {
         ObjectReader mj(*m, root.pointerTo("medium"));
@@ -63,14 +61,14 @@ void readSceneObjects(ObjectReader& root, const RenderSettings& render, const As
     if (!shapes.is_array()) root.fail("shapes", "expected an array of shapes");
     for (size_t i = 0; i < shapes.size(); ++i) {
         ObjectReader sj(shapes[i], root.pointerTo("shapes") + "/" + std::to_string(i));
-        readShape(sj, materials, builder, assets, camera);
+        readShape(sj, materials, builder, assets, view);
     }
 
     if (const Json* lights = root.rawOptional("lights")) {
         if (!lights->is_array()) root.fail("lights", "expected an array of lights");
         for (size_t i = 0; i < lights->size(); ++i) {
             ObjectReader lj((*lights)[i], root.pointerTo("lights") + "/" + std::to_string(i));
-            builder.addLight(makeLight(lj, assets));
+            builder.addLight(makeLight(lj, assets, view.worldToRender));
         }
     }
 }

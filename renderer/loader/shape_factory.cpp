@@ -23,7 +23,7 @@ float similarityScale(ObjectReader& j, const Transform& t, const char* shape) {
 }
 
 std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3 center = j.getVec3("center", Vec3(0.0f));
+    const Vec3d center = j.getPoint("center", Vec3d{});
     const float radius = j.getFloat("radius", Range::positive());
     const float scale = similarityScale(j, t, "sphere");
     // The transform's rotation turns the sphere's own axes (the poles of its uv).
@@ -35,7 +35,7 @@ std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const Ass
 }
 
 std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3 corner = t.point(j.getVec3("corner"));
+    const Vec3 corner = t.point(j.getPoint("corner"));
     const Vec3 edgeU = t.vector(j.getVec3("edge_u"));
     const Vec3 edgeV = t.vector(j.getVec3("edge_v"));
     const float area = length(cross(edgeU, edgeV));
@@ -45,7 +45,7 @@ std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const Asset
 }
 
 std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3 center = j.getVec3("center", Vec3(0.0f));
+    const Vec3d center = j.getPoint("center", Vec3d{});
     const Vec3 normal = j.getVec3("normal", Vec3(0, 0, 1));
     const float radius = j.getFloat("radius", Range::positive());
     if (!(length(normal) > 0)) j.fail("normal", "expected a non-zero vector");
@@ -54,9 +54,9 @@ std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const Asset
 }
 
 std::unique_ptr<Shape> makePolygon(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    std::vector<Vec3> vertices = j.getVec3Array("vertices", 3);
-    for (Vec3& v : vertices)
-        v = t.point(v);
+    std::vector<Vec3> vertices;
+    for (const Vec3d& v : j.getPointArray("vertices", 3))
+        vertices.push_back(t.point(v));
     if (const auto problem = checkConvexPolygon(vertices)) {
         if (problem->vertex < 0) j.fail("vertices", problem->message);
         throw ConfigError(j.pointerTo("vertices") + "/" + std::to_string(problem->vertex),
@@ -78,7 +78,7 @@ std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const Asset
         j.fail("file", e.what());
     }
     for (Vec3& p : data.positions) {
-        p = t.point(p);
+        p = t.point(Vec3d{p.x, p.y, p.z});
         if (!isFinite(p)) j.fail("transform", "moves the mesh's vertices beyond float range");
     }
     if (normals == "smooth") data.normals = TriangleMesh::smoothNormals(data);
@@ -109,10 +109,7 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
                 throw ConfigError(j.pointerTo("matrix") + "/" + std::to_string(i),
                                   "the bottom row of the matrix must be [0, 0, 0, 1] (projective "
                                   "transforms are not supported)");
-        float f[16];
-        for (int i = 0; i < 16; ++i)
-            f[i] = static_cast<float>(m[i]);
-        t = Transform::fromRowMajor(f);
+        t = Transform::fromRowMajor(m.data());
     } else {
         if (j.has("scale")) {
             const Json& s = j.raw("scale");
@@ -125,7 +122,7 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
                 ObjectReader rj(r, pointer);
                 const Vec3 axis = rj.getVec3("axis");
                 if (!(length(axis) > 0)) rj.fail("axis", "expected a non-zero vector");
-                t = t.then(Transform::rotate(axis, rj.getFloat("angle")));
+                t = t.then(Transform::rotate(axis, rj.getNumber("angle")));
                 rj.finish();
             };
             if (rotations->is_array()) {
@@ -135,7 +132,7 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
                 addRotation(*rotations, at);
             }
         }
-        t = t.then(Transform::translate(j.getVec3("translate", Vec3(0.0f))));
+        t = t.then(Transform::translate(j.getPoint("translate", Vec3d{})));
     }
     if (!t.isInvertible()) parent.fail(key, "the transform is singular");
     j.finish();

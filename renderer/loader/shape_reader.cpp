@@ -7,7 +7,8 @@
 namespace rr {
 
 void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builder,
-               const AssetResolver& assets, const CameraSettings& camera) {
+               const AssetResolver& assets, const CameraReading& view) {
+    const CameraSettings& camera = view.camera;
     Transform transform = readTransform(j, "transform");
 
     Rgb emission(0.0f);
@@ -39,8 +40,11 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
     // Without a shutter interval a moving shape is frozen where it is at the shutter instant,
     // so the scene pays nothing for motion blur.
     const bool shutterOpenInterval = camera.shutterClose > camera.shutterOpen;
-    if (!shutterOpenInterval)
-        transform = transform.then(Transform::translate(motion * camera.shutterOpen));
+    if (!shutterOpenInterval) {
+        const Vec3 frozen = motion * camera.shutterOpen;
+        transform = transform.then(Transform::translate({frozen.x, frozen.y, frozen.z}));
+    }
+    transform = transform.then(view.worldToRender);
 
     // The geometry is read last: the factory's finish() then rejects unknown keys for the
     // whole shape object, including the common keys read above.

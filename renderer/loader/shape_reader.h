@@ -4,15 +4,16 @@
 
 #include "config/json_reader.h"
 #include "loader/asset_resolver.h"
+#include "loader/camera_reader.h"
 #include "loader/material_catalog.h"
-#include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace rr {
 
-// Builds the shape described by `json` and adds it to `builder`. Motion needs the camera's
-// shutter: a moving shape is frozen at the shutter instant when the shutter does not open.
+// Builds the shape described by `json` in rendering space and adds it to `builder`. Motion needs
+// the camera's shutter: a moving shape is frozen at the shutter instant when the shutter does
+// not open.
 void readShape(ObjectReader& json, MaterialCatalog& materials, SceneBuilder& builder,
-               const AssetResolver& assets, const CameraSettings& camera);
+               const AssetResolver& assets, const CameraReading& view);
 
 }  // namespace rr

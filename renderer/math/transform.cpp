@@ -5,15 +5,18 @@
 namespace rr {
 
 namespace {
-Imath::V3f toImath(const Vec3& v) {
+Imath::V3d toImath(const Vec3& v) {
     return {v.x, v.y, v.z};
 }
-Vec3 fromImath(const Imath::V3f& v) {
+Imath::V3d toImath(const Vec3d& v) {
     return {v.x, v.y, v.z};
+}
+Vec3 fromImath(const Imath::V3d& v) {
+    return {float(v.x), float(v.y), float(v.z)};
 }
 }  // namespace
 
-Transform Transform::translate(const Vec3& t) {
+Transform Transform::translate(const Vec3d& t) {
     Transform r;
     r.m_.setTranslation(toImath(t));
     return r;
@@ -25,13 +28,13 @@ Transform Transform::scale(const Vec3& s) {
     return r;
 }
 
-Transform Transform::rotate(const Vec3& axis, float degrees) {
+Transform Transform::rotate(const Vec3& axis, double degrees) {
     Transform r;
-    r.m_.setAxisAngle(toImath(normalize(axis)), degrees * kPi / 180.0f);
+    r.m_.setAxisAngle(toImath(normalize(axis)), degrees * M_PI / 180.0);
     return r;
 }
 
-Transform Transform::fromRowMajor(const float m[16]) {
+Transform Transform::fromRowMajor(const double m[16]) {
     // A row-major matrix for column vectors is the transpose of Imath's row-vector layout.
     Transform r;
     for (int i = 0; i < 4; ++i)
@@ -46,22 +49,22 @@ Transform Transform::then(const Transform& next) const {
     return r;
 }
 
-Vec3 Transform::point(const Vec3& p) const {
-    Imath::V3f out;
+Vec3 Transform::point(const Vec3d& p) const {
+    Imath::V3d out;
     m_.multVecMatrix(toImath(p), out);
     return fromImath(out);
 }
 
 Vec3 Transform::vector(const Vec3& v) const {
-    Imath::V3f out;
+    Imath::V3d out;
     m_.multDirMatrix(toImath(v), out);
     return fromImath(out);
 }
 
 Vec3 Transform::normal(const Vec3& n) const {
     // Normals transform by the inverse transpose of the linear part.
-    const Imath::M44f invT = m_.inverse().transposed();
-    Imath::V3f out;
+    const Imath::M44d invT = m_.inverse().transposed();
+    Imath::V3d out;
     invT.multDirMatrix(toImath(n), out);
     return fromImath(out);
 }
@@ -86,9 +89,9 @@ bool Transform::isInvertible() const {
 }
 
 bool Transform::isSimilarity(float* uniformScale) const {
-    const Vec3 rows[3] = {{m_[0][0], m_[0][1], m_[0][2]},
-                          {m_[1][0], m_[1][1], m_[1][2]},
-                          {m_[2][0], m_[2][1], m_[2][2]}};
+    const Vec3 rows[3] = {{float(m_[0][0]), float(m_[0][1]), float(m_[0][2])},
+                          {float(m_[1][0]), float(m_[1][1]), float(m_[1][2])},
+                          {float(m_[2][0]), float(m_[2][1]), float(m_[2][2])}};
     const float s = length(rows[0]);
     constexpr float kTol = 1e-4f;
     for (int i = 0; i < 3; ++i) {

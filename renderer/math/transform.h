@@ -1,5 +1,6 @@
-// Affine transforms for placing shapes. A thin wrapper over Imath's 4×4 matrix (row-vector
-// convention: p' = p · M), so the rest of the renderer never sees Imath types.
+// Affine transforms for placing shapes, in double (they are applied once, at load time, and a
+// translation by 10^6 must keep a point's fraction). A thin wrapper over Imath's 4×4 matrix
+// (row-vector convention: p' = p · M), so the rest of the renderer never sees Imath types.
 #pragma once
 
 #include <Imath/ImathMatrix.h>
@@ -12,17 +13,17 @@ class Transform {
   public:
     Transform() = default;
 
-    static Transform translate(const Vec3& t);
+    static Transform translate(const Vec3d& t);
     static Transform scale(const Vec3& s);
     // Rotation by `degrees` about `axis` (right-handed).
-    static Transform rotate(const Vec3& axis, float degrees);
+    static Transform rotate(const Vec3& axis, double degrees);
     // Row-major 4×4 matrix acting on column vectors, as written in scene files.
-    static Transform fromRowMajor(const float m[16]);
+    static Transform fromRowMajor(const double m[16]);
 
     // Applies `this` first, then `next`.
     Transform then(const Transform& next) const;
 
-    Vec3 point(const Vec3& p) const;
+    Vec3 point(const Vec3d& p) const;  // computed in double, rounded once
     Vec3 vector(const Vec3& v) const;
     Vec3 normal(const Vec3& n) const;  // not normalized
 
@@ -33,7 +34,7 @@ class Transform {
     bool isSimilarity(float* uniformScale) const;
 
   private:
-    Imath::M44f m_;  // p' = p · m_
+    Imath::M44d m_;  // p' = p · m_
 };
 
 }  // namespace rr

@@ -68,6 +68,19 @@ inline Vec3 min(const Vec3& a, const Vec3& b) {
 inline Vec3 max(const Vec3& a, const Vec3& b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
+// A position as a scene file gives it, in double: the loader moves it into rendering space
+// (loader/camera_reader.h) before rounding to float, so that coordinates far from the world's
+// origin lose nothing to the translation.
+struct Vec3d {
+    double x = 0, y = 0, z = 0;
+    constexpr Vec3d operator-() const { return {-x, -y, -z}; }
+    constexpr Vec3d operator-(const Vec3d& o) const { return {x - o.x, y - o.y, z - o.z}; }
+};
+
+inline Vec3 toFloat(const Vec3d& v) {
+    return {float(v.x), float(v.y), float(v.z)};
+}
+
 inline bool isFinite(const Vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

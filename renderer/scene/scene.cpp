@@ -115,6 +115,10 @@ void SceneBuilder::addLight(std::unique_ptr<Light> light) {
     scene_->ownedLights_.push_back(std::move(light));
 }
 
+void SceneBuilder::setRenderOrigin(const Vec3d& origin) {
+    scene_->renderOrigin_ = origin;
+}
+
 void SceneBuilder::setCamera(const CameraSettings& settings, int width, int height) {
     scene_->camera_ = std::make_unique<Camera>(settings, width, height);
 }

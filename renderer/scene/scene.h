@@ -41,6 +41,10 @@ class Scene {
     bool occluded(const Ray& ray) const;
 
     const Camera& camera() const { return *camera_; }
+    // Where rendering space's origin is in the scene file's coordinates: the camera's position
+    // (loader/camera_reader.h). Everything in the scene is in rendering space; a point the file
+    // names is at `point - renderOrigin()` here.
+    const Vec3d& renderOrigin() const { return renderOrigin_; }
     std::span<const Light* const> lights() const { return lights_; }
     // The lights that rays escaping the scene see (environment maps).
     std::span<const Light* const> infiniteLights() const { return infiniteLights_; }
@@ -57,6 +61,7 @@ class Scene {
     Scene() = default;
 
     std::unique_ptr<Camera> camera_;
+    Vec3d renderOrigin_;
     std::vector<std::unique_ptr<Material>> materials_;
     std::vector<std::unique_ptr<Medium>> media_;
     const Medium* medium_ = nullptr;
@@ -85,6 +90,7 @@ class SceneBuilder {
                   bool twoSidedEmission);
     void addLight(std::unique_ptr<Light> light);
     void setCamera(const CameraSettings& settings, int width, int height);
+    void setRenderOrigin(const Vec3d& origin);
 
     // Builds the acceleration structure. Throws std::runtime_error on Embree failure.
     std::unique_ptr<Scene> build(LightSelection selection);

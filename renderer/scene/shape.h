@@ -1,6 +1,7 @@
 // A shape is geometry Embree can intersect, plus what lights need from it: area and sampling.
 // Shapes may translate linearly over scene time [0, 1] (motion blur); `offsetAt` gives the
-// displacement at a time. Shapes are built in world space (transforms applied at load).
+// displacement at a time. Shapes are built in rendering space (loader/camera_reader.h; transforms
+// applied at load).
 #pragma once
 
 #include <embree3/rtcore.h>

@@ -175,7 +175,9 @@ int run() {
             const uint64_t key = hashKeys(uint64_t(x), uint64_t(y));
             const Ray r = camera.generateRay(Vec2(x + uniform(key, 0), y + uniform(key, 1)),
                                              Vec2(0.5f, 0.5f), 0);
-            cameraRays.push_back({r.origin, r.direction, r.tMax});
+            // The bench's scene is in the file's coordinates; the camera in rendering space.
+            cameraRays.push_back(
+                {r.origin + toFloat(loaded.scene->renderOrigin()), r.direction, r.tMax});
         }
     const std::vector<Hit> hits = firstHits(scene, cameraRays);
     std::vector<BenchRay> bounceRays, shadowRays;

@@ -138,11 +138,12 @@ class ScenePoint final : public ShadingPoint {
 };
 
 // The quad (1.1 × 0.9, facing down, ~0.2 sr) above the point and a constant environment, or
-// two (whose densities for an escaped direction one component for all lights must sum).
+// two (whose densities for an escaped direction one component for all lights must sum). The
+// camera is at the point, the origin, so that rendering space is the file's.
 LoadedScene quadAndEnvironment(bool twoEnvironments) {
     return loadSceneText(
         R"({"render": {"resolution": [4, 4]},
-        "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1]},
         "shapes": [{"type": "quad", "corner": [-0.3, -0.7, 2], "edge_u": [0, 1.1, 0.2],
                     "edge_v": [0.9, 0, 0.1], "emission": {"radiance": 5}}],
         "lights": [{"type": "environment", "radiance": 0.5})" +

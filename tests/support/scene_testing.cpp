@@ -31,6 +31,12 @@ std::unique_ptr<Material> materialFromJson(const std::string& json) {
     return makeMaterial(reader, AssetResolver({}), none);
 }
 
+Ray inFileSpace(const Scene& scene, Ray ray) {
+    const Vec3d o = scene.renderOrigin();
+    ray.origin = toFloat({ray.origin.x + o.x, ray.origin.y + o.y, ray.origin.z + o.z});
+    return ray;
+}
+
 TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, int threads) {
     TestRender r{Film(scene.render.width, scene.render.height), {}};
     RenderOptions options;

@@ -19,6 +19,10 @@ LoadedScene loadSceneFile(const std::string& name, const std::vector<std::string
 // /materials/m.
 std::unique_ptr<Material> materialFromJson(const std::string& json);
 
+// A ray of the scene (a camera ray, say) in the scene file's coordinates, which the tests' own
+// geometry uses: rendering space is translated so that the camera is at its origin.
+Ray inFileSpace(const Scene& scene, Ray ray);
+
 struct TestRender {
     Film film;
     RenderStats stats;

@@ -58,7 +58,8 @@ Rgb syntheticTexel(int col, int row) {
 
 std::unique_ptr<EnvironmentMap> loadMap(const Json& description) {
     ObjectReader reader(description, "/lights/0");
-    std::unique_ptr<Light> light = makeLight(reader, AssetResolver::standard(TEST_SCENES_DIR));
+    std::unique_ptr<Light> light =
+        makeLight(reader, AssetResolver::standard(TEST_SCENES_DIR), Transform());
     auto* map = dynamic_cast<EnvironmentMap*>(light.release());
     EXPECT_NE(map, nullptr);
     map->preprocess(Vec3(0.0f), 1.0f);
