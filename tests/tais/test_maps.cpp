@@ -5,8 +5,10 @@
 // serpentine, and maximum contribution filtering follows eq. 4.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 #include <vector>
 
 #include "support/chi2.h"
@@ -285,6 +287,70 @@ TEST(TemporaryMaps, SamplesAreCreditedTheConstantAndBlackPixelsAreUniform) {
     EXPECT_EQ(map2.weight(3, 3, tais::MapPart::Credited), 0.0);
 }
 
+// assignSum and slide, the one-pass forms the scan uses, give the bits of the operations they
+// replace: a copy, an accumulate() per further part and a normalize(); accumulate(+1), then
+// accumulate(−1). (Equal bits keep TAIS's renders identical to the multi-pass code's.)
+TEST(Maps, OnePassSumsAndSlidesGiveTheBitsOfTheirSteps) {
+    auto map1 = [](int seed) {
+        std::vector<double> w(7);
+        for (size_t i = 0; i < w.size(); ++i)
+            w[i] = std::fmod(0.37 * double(i * i + 3 * seed) + 0.11 * seed, 1.3);
+        InvertedMap1D m = InvertedMap1D::fromWeights(w);
+        m.accumulateUniform(0.01 * seed);
+        return m;
+    };
+    auto map2 = [](int seed) {
+        std::vector<double> w(5 * 3);
+        for (size_t i = 0; i < w.size(); ++i)
+            w[i] = std::fmod(0.29 * double(i * i + 5 * seed) + 0.07 * seed, 0.9);
+        InvertedMap2D m = InvertedMap2D::fromWeights(w, 5, 3);
+        m.accumulateUniform(0.02 * seed);
+        return m;
+    };
+    auto expectSameBits = [](const auto& a, const auto& b, const char* what) {
+        const auto cells = [](const auto& m) {
+            std::vector<double> out;
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, InvertedMap1D>) {
+                for (int c = 0; c < m.cells(); ++c)
+                    out.push_back(m.weight(c));
+            } else {
+                for (int y = 0; y < m.height(); ++y)
+                    for (int x = 0; x < m.width(); ++x)
+                        out.push_back(m.weight(x, y));
+            }
+            out.push_back(m.total());
+            return out;
+        };
+        EXPECT_EQ(cells(a), cells(b)) << what;
+    };
+    auto check = [&](auto make, const char* what) {
+        const auto p0 = make(1), p1 = make(2), p2 = make(3);
+        for (bool normalize : {false, true}) {
+            auto steps = p0;
+            steps.accumulate(p1);
+            steps.accumulate(p2);
+            if (normalize) steps.normalize();
+            auto fused = make(9);  // any prior content is overwritten
+            const std::array parts = {&p0, &p1, &p2};
+            fused.assignSum(parts, normalize);
+            expectSameBits(fused, steps, what);
+        }
+        auto steps = p0;
+        steps.accumulate(p1);
+        steps.accumulate(p2, -1);
+        auto slid = p0;
+        slid.slide(&p1, &p2);
+        expectSameBits(slid, steps, what);
+        auto one = p0;
+        one.slide(nullptr, &p2);
+        auto oneSteps = p0;
+        oneSteps.accumulate(p2, -1);
+        expectSameBits(one, oneSteps, what);
+    };
+    check(map1, "1-D");
+    check(map2, "2-D");
+}
+
 // Fig. 3 as we read it, the definition MapRows is checked against: x−2 … x+2 in the row above
 // and the two previous pixels of this row in its scan direction (even rows run left to right),
 // clipped at the edges; none for the band's first pixel.
@@ -316,7 +382,13 @@ TEST(Scan, MapRowsSumTheRenderedNeighbours) {
     };
     tais::MapRows<InvertedMap1D> rows(kWidth, InvertedMap1D(4));
     InvertedMap1D start(4);
-    EXPECT_EQ(rows.neighbourSum(0, 0, &start), 1);  // no neighbour: the initial map
+    // The neighbours' sum (the only form the renderer uses it in is normalised).
+    auto neighbourSum = [&rows](int x, int y, InvertedMap1D* out) {
+        const auto n = rows.neighbours(x, y);
+        out->assignSum(n.list(), false);
+        return n.count;
+    };
+    EXPECT_EQ(neighbourSum(0, 0, &start), 1);  // no neighbour: the initial map
     EXPECT_NEAR(start.weight(2) / start.total(), 0.25, 1e-12);
     for (int y = 0; y < kRows; ++y) {
         if (y > 0) rows.nextRow();
@@ -324,10 +396,10 @@ TEST(Scan, MapRowsSumTheRenderedNeighbours) {
             const int x = y % 2 == 0 ? i : kWidth - 1 - i;
             if (y == 2 && i == 4) {  // a call out of order: the window is summed afresh
                 InvertedMap1D other(4);
-                rows.neighbourSum(0, y, &other);
+                neighbourSum(0, y, &other);
             }
             const std::vector<Pixel> expected = renderedNeighbours(x, y, kWidth);
-            const int count = rows.neighbourSum(x, y, &start);
+            const int count = neighbourSum(x, y, &start);
             EXPECT_EQ(count, std::max<int>(int(expected.size()), 1)) << x << ", " << y;
             for (int c = 0; c < 4 && !expected.empty(); ++c) {
                 double sum = 0;

@@ -47,6 +47,88 @@ void InvertedMap1D::accumulate(const InvertedMap1D& other, double scale) {
     uniform_ += scale * other.uniform_;
 }
 
+namespace {
+
+// Σ parts[k][i] in the order of assigning parts[0] and accumulating the others.
+double sumAt(std::span<const std::vector<double>* const> parts, size_t i) {
+    double s = (*parts[0])[i];
+    for (size_t k = 1; k < parts.size(); ++k)
+        s += (*parts[k])[i];
+    return s;
+}
+
+// to = Σ parts · factor, element by element (factor 1: exact, as no scaling). The usual part
+// counts (one to three: a pixel's neighbours) are one pass over plain arrays, which the
+// compiler vectorises; more (the window summed afresh) add part after part.
+void assignScaledSum(std::vector<double>& to, std::span<const std::vector<double>* const> parts,
+                     double factor) {
+    double* __restrict out = to.data();
+    const size_t n = to.size();
+    const double* __restrict a = parts[0]->data();
+    if (parts.size() == 1) {
+        for (size_t i = 0; i < n; ++i)
+            out[i] = a[i] * factor;
+        return;
+    }
+    const double* __restrict b = parts[1]->data();
+    if (parts.size() == 2) {
+        for (size_t i = 0; i < n; ++i)
+            out[i] = (a[i] + b[i]) * factor;
+        return;
+    }
+    const double* __restrict c = parts[2]->data();
+    if (parts.size() == 3) {
+        for (size_t i = 0; i < n; ++i)
+            out[i] = ((a[i] + b[i]) + c[i]) * factor;
+        return;
+    }
+    for (size_t i = 0; i < n; ++i)
+        out[i] = sumAt(parts, i) * factor;
+}
+
+void slideSums(std::vector<double>& sums, const std::vector<double>* entering,
+               const std::vector<double>* leaving) {
+    double* __restrict s = sums.data();
+    const size_t n = sums.size();
+    const double* __restrict in = entering ? entering->data() : nullptr;
+    const double* __restrict out = leaving ? leaving->data() : nullptr;
+    if (in && out) {
+        for (size_t i = 0; i < n; ++i)
+            s[i] = (s[i] + in[i]) - out[i];
+    } else if (in) {
+        for (size_t i = 0; i < n; ++i)
+            s[i] += in[i];
+    } else if (out) {
+        for (size_t i = 0; i < n; ++i)
+            s[i] -= out[i];
+    }
+}
+
+}  // namespace
+
+void InvertedMap1D::assignSum(std::span<const InvertedMap1D* const> parts, bool normalize) {
+    if (parts.empty() || parts.size() > kMaxSummedMaps)
+        throw std::invalid_argument("a sum of 1 to 8 importance maps");
+    const std::vector<double>* sums[kMaxSummedMaps];
+    double uniform = parts[0]->uniform_;
+    for (size_t k = 0; k < parts.size(); ++k) {
+        if (parts[k]->sums_.size() != sums_.size())
+            throw std::invalid_argument("importance maps of different sizes");
+        sums[k] = &parts[k]->sums_;
+        if (k > 0) uniform += parts[k]->uniform_;
+    }
+    const std::span<const std::vector<double>* const> all(sums, parts.size());
+    const double factor = normalize ? 1.0 / (sumAt(all, sums_.size() - 1) + uniform) : 1.0;
+    assignScaledSum(sums_, all, factor);
+    uniform_ = uniform * factor;
+}
+
+void InvertedMap1D::slide(const InvertedMap1D* entering, const InvertedMap1D* leaving) {
+    slideSums(sums_, entering ? &entering->sums_ : nullptr, leaving ? &leaving->sums_ : nullptr);
+    if (entering) uniform_ += entering->uniform_;
+    if (leaving) uniform_ -= leaving->uniform_;
+}
+
 void InvertedMap1D::accumulateWeights(std::span<const double> weights, double scale,
                                       double perCell) {
     if (weights.size() + 1 != sums_.size())
@@ -129,6 +211,29 @@ void InvertedMap2D::accumulate(const InvertedMap2D& other, double scale) {
     for (size_t i = 0; i < sums_.size(); ++i)
         sums_[i] += scale * other.sums_[i];
     rowTotals_.accumulate(other.rowTotals_, scale);
+}
+
+void InvertedMap2D::assignSum(std::span<const InvertedMap2D* const> parts, bool normalize) {
+    if (parts.empty() || parts.size() > kMaxSummedMaps)
+        throw std::invalid_argument("a sum of 1 to 8 importance maps");
+    const std::vector<double>* sums[kMaxSummedMaps];
+    const InvertedMap1D* rows[kMaxSummedMaps];
+    for (size_t k = 0; k < parts.size(); ++k) {
+        if (parts[k]->width_ != width_ || parts[k]->height_ != height_)
+            throw std::invalid_argument("importance maps of different sizes");
+        sums[k] = &parts[k]->sums_;
+        rows[k] = &parts[k]->rowTotals_;
+    }
+    rowTotals_.assignSum(std::span(rows, parts.size()), false);
+    const double factor = normalize ? 1.0 / total() : 1.0;
+    rowTotals_.scale(factor);
+    assignScaledSum(sums_, std::span(sums, parts.size()), factor);
+}
+
+void InvertedMap2D::slide(const InvertedMap2D* entering, const InvertedMap2D* leaving) {
+    slideSums(sums_, entering ? &entering->sums_ : nullptr, leaving ? &leaving->sums_ : nullptr);
+    rowTotals_.slide(entering ? &entering->rowTotals_ : nullptr,
+                     leaving ? &leaving->rowTotals_ : nullptr);
 }
 
 void InvertedMap2D::accumulateWeights(std::span<const double> weights, double scale,

@@ -37,6 +37,9 @@ inline int cellOf(float u, int cells) {
     return std::clamp(static_cast<int>(u * cells), 0, cells - 1);
 }
 
+// The most maps assignSum() adds in one call (a pixel's neighbours need at most 5).
+inline constexpr size_t kMaxSummedMaps = 8;
+
 // Which of a map's mass a density or a draw uses (see above).
 enum class MapPart : uint8_t { Whole, Credited };
 
@@ -67,6 +70,12 @@ class InvertedMap1D {
 
     // this += scale · other (same size): averaging and blending maps (§3.3).
     void accumulate(const InvertedMap1D& other, double scale = 1);
+    // this = the sum of `parts` (same size; at least one), divided by its total if `normalize`:
+    // one pass over memory instead of a copy, an accumulate() per further part and a
+    // normalize(), and the same bits (the same operations in the same order).
+    void assignSum(std::span<const InvertedMap1D* const> parts, bool normalize);
+    // this += *entering − *leaving (either may be null) in one pass: a running window's step.
+    void slide(const InvertedMap1D* entering, const InvertedMap1D* leaving);
     // this += the map of scale · `weights` (credited) + `perCell` in every cell (uniform),
     // without building it.
     void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
@@ -126,6 +135,9 @@ class InvertedMap2D {
     }
 
     void accumulate(const InvertedMap2D& other, double scale = 1);
+    // As InvertedMap1D's.
+    void assignSum(std::span<const InvertedMap2D* const> parts, bool normalize);
+    void slide(const InvertedMap2D* entering, const InvertedMap2D* leaving);
     // this += the map of scale · `weights` (row-major, credited) + `perCell` in every cell.
     void accumulateWeights(std::span<const double> weights, double scale, double perCell = 0);
     void accumulateUniform(double perCell) { rowTotals_.accumulateUniform(perCell * width_); }

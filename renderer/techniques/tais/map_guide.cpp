@@ -24,7 +24,7 @@ float rescale(float u, float a, float b) {
 void MapGuide::record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
                       bool isContribution) {
     if (recordCount_ == kMaxRecords) throw std::logic_error("TAIS: too many decisions recorded");
-    records_[recordCount_++] = Record{kind, cell, coordinates, amount, isContribution};
+    records_[recordCount_++].record = Record{kind, cell, coordinates, amount, isContribution};
 }
 
 Ray MapGuide::cameraRay(int x, int y, float* weight) {
@@ -142,7 +142,7 @@ void MapGuide::lightContribution(uint32_t /*vertex*/, const Rgb& contribution) {
     // drew it): the next-event estimator adds each sample's contribution right after drawing
     // it, one sample per vertex.
     for (int i = recordCount_ - lightRecords_; i < recordCount_; ++i)
-        records_[i].amount = contribution;
+        records_[i].record.amount = contribution;
     lightRecords_ = 0;
 }
 
@@ -252,7 +252,7 @@ float MapGuide::bsdfPdf(uint32_t /*vertex*/, const Material& material, const Sha
 
 void MapGuide::splat(const Rgb& value, TemporaryMaps& maps) const {
     for (int i = 0; i < recordCount_; ++i) {
-        const Record& r = records_[i];
+        const Record& r = records_[i].record;
         const double v = settings_.credit == Credit::Path ? brightness(value)
                          : r.isContribution               ? brightness(r.amount)
                                                           : brightness(value - r.amount);

@@ -76,10 +76,17 @@ class MapGuide : public StandardSampling {
     // value credited is what came after it), or for a light sample its own contribution.
     struct Record {
         MapKind kind;
-        int cell = 0;  // discrete maps: the entry; scatter direction: the bounce
+        int cell;  // discrete maps: the entry; scatter direction: the bounce
         Vec2 coordinates;
-        Rgb amount = Rgb(0.0f);
-        bool isContribution = false;
+        Rgb amount;
+        bool isContribution;
+    };
+    // A record's storage, left uninitialised: a guide lives for one sample and record() writes
+    // every field before anything reads it, so zeroing all the slots (1.6 KiB) per sample,
+    // which a plain array of Records does, is waste.
+    union RecordSlot {
+        RecordSlot() {}
+        Record record;
     };
     void record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
                 bool isContribution = false);
@@ -132,7 +139,7 @@ class MapGuide : public StandardSampling {
     std::span<const char> invertible_;
 
     int bounce_ = 0;  // non-specular surface vertices so far
-    std::array<Record, kMaxRecords> records_;
+    std::array<RecordSlot, kMaxRecords> records_;
     int recordCount_ = 0;
     int lightRecords_ = 0;  // records of the current light sample, awaiting its contribution
 };

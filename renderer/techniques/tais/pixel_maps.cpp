@@ -2,24 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rr::tais {
 
 namespace {
 
-template <class Map>
-void accumulateInto(std::optional<Map>& to, const std::optional<Map>& from, double scale) {
-    if (to) to->accumulate(*from, scale);
+// The member `map` of each of `parts`, for the maps' own assignSum.
+template <class Map, class Member>
+void assignSumOf(Map& to, std::span<const PixelMaps* const> parts, Member member, bool normalize) {
+    const Map* maps[kMaxSummedMaps];
+    for (size_t k = 0; k < parts.size(); ++k)
+        maps[k] = &member(*parts[k]);
+    to.assignSum(std::span<const Map* const>(maps, parts.size()), normalize);
 }
 
-template <class F>
-void forEach(PixelMaps& maps, F&& f) {
-    for (auto* m : {&maps.time, &maps.scatterDistance, &maps.bifurcation, &maps.lightSelection})
-        if (*m) f(**m);
-    for (auto* m : {&maps.lens, &maps.pointOnLight})
-        if (*m) f(**m);
-    for (InvertedMap2D& m : maps.scatterDirection)
-        f(m);
+template <class Map, class Member>
+void slideOf(Map& to, const PixelMaps* entering, const PixelMaps* leaving, Member member) {
+    to.slide(entering ? &member(*entering) : nullptr, leaving ? &member(*leaving) : nullptr);
 }
 
 // The per-entry constant of §3.3 step 2 for a map of `cells` entries: 1/n for preimage maps;
@@ -75,23 +75,47 @@ PixelMaps PixelMaps::uniform(const TaisSettings& s, int lightCount) {
     return m;
 }
 
-void PixelMaps::accumulate(const PixelMaps& other, double scale) {
-    accumulateInto(time, other.time, scale);
-    accumulateInto(scatterDistance, other.scatterDistance, scale);
-    accumulateInto(bifurcation, other.bifurcation, scale);
-    accumulateInto(lightSelection, other.lightSelection, scale);
-    accumulateInto(lens, other.lens, scale);
-    accumulateInto(pointOnLight, other.pointOnLight, scale);
-    for (size_t i = 0; i < scatterDirection.size(); ++i)
-        scatterDirection[i].accumulate(other.scatterDirection[i], scale);
+// Every enabled map, with the accessor of the same map in another PixelMaps.
+template <class F>
+void forEachWithAccessor(PixelMaps& maps, F&& f) {
+    using P = const PixelMaps&;
+    if (maps.time)
+        f(
+            *maps.time, [](P p) -> auto& { return *p.time; });
+    if (maps.scatterDistance)
+        f(
+            *maps.scatterDistance, [](P p) -> auto& { return *p.scatterDistance; });
+    if (maps.bifurcation)
+        f(
+            *maps.bifurcation, [](P p) -> auto& { return *p.bifurcation; });
+    if (maps.lightSelection)
+        f(
+            *maps.lightSelection, [](P p) -> auto& { return *p.lightSelection; });
+    if (maps.lens)
+        f(
+            *maps.lens, [](P p) -> auto& { return *p.lens; });
+    if (maps.pointOnLight)
+        f(
+            *maps.pointOnLight, [](P p) -> auto& { return *p.pointOnLight; });
+    for (size_t i = 0; i < maps.scatterDirection.size(); ++i)
+        f(
+            maps.scatterDirection[i], [i](P p) -> auto& { return p.scatterDirection[i]; });
 }
 
-void PixelMaps::scale(double factor) {
-    forEach(*this, [&](auto& map) { map.scale(factor); });
+void PixelMaps::assignSum(std::span<const PixelMaps* const> parts, bool normalize) {
+    if (parts.empty() || parts.size() > kMaxSummedMaps)
+        throw std::invalid_argument("a sum of 1 to 8 maps");
+    forEachWithAccessor(
+        *this, [&](auto& map, auto member) { assignSumOf(map, parts, member, normalize); });
+}
+
+void PixelMaps::slide(const PixelMaps* entering, const PixelMaps* leaving) {
+    forEachWithAccessor(*this,
+                        [&](auto& map, auto member) { slideOf(map, entering, leaving, member); });
 }
 
 void PixelMaps::normalize() {
-    forEach(*this, [](auto& map) { map.normalize(); });
+    forEachWithAccessor(*this, [](auto& map, auto) { map.normalize(); });
 }
 
 TemporaryMaps::TemporaryMaps(const TaisSettings& s, int lightCount) {

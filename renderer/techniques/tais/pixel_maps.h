@@ -45,9 +45,11 @@ struct PixelMaps {
     // Uniform maps of the enabled kinds (a pixel with no rendered neighbour).
     static PixelMaps uniform(const TaisSettings& settings, int lightCount);
 
-    // Linear operations on every map (same layout): averaging neighbours, blending.
-    void accumulate(const PixelMaps& other, double scale = 1);
-    void scale(double factor);
+    // Each map the sum of the parts' (same layout; 1 to 8 parts), divided by its own total if
+    // `normalize` (InvertedMap1D::assignSum).
+    void assignSum(std::span<const PixelMaps* const> parts, bool normalize);
+    // Each map += entering's − leaving's (either may be null): a running window's step.
+    void slide(const PixelMaps* entering, const PixelMaps* leaving);
     // Each map divided by its own total.
     void normalize();
 };

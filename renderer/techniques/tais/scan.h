@@ -10,7 +10,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -23,12 +25,23 @@ inline int scanDirection(int rowInBand) {
 }
 
 // The maps of two rows of a band: the row being rendered and the one above it. `Maps` is a
-// pixel's set of importance maps: copyable, with accumulate(other, scale).
+// pixel's set of importance maps: copyable, with assignSum(parts, normalize) and
+// slide(entering, leaving) (PixelMaps, InvertedMap1D).
 template <class Maps>
 class MapRows {
   public:
+    // Fig. 3: the maps whose sum is the pixel's rendered neighbours' (the initial maps alone
+    // for the band's first pixel): the running sum over the row above, then up to two pixels
+    // before this one in the row; `count` neighbours in all (at least 1).
+    struct Neighbours {
+        std::array<const Maps*, 3> parts;
+        int partCount = 0;
+        int count = 0;
+        std::span<const Maps* const> list() const { return {parts.data(), size_t(partCount)}; }
+    };
+
     // `initial`: the maps of a pixel with no rendered neighbour (uniform). Every slot holds a
-    // copy from the start, so storing and averaging reuse their memory pixel after pixel.
+    // copy from the start, so storing and summing reuse their memory pixel after pixel.
     MapRows(int width, Maps initial)
         : width_(width),
           initial_(std::move(initial)),
@@ -36,28 +49,28 @@ class MapRows {
           current_(width, initial_),
           window_(initial_) {}
 
-    // Fig. 3: the sum of the maps of the pixel's rendered neighbours (the initial maps for
-    // the band's first pixel) into *out; returns how many were summed (at least 1). The five
-    // pixels above are a window that moves one pixel per call along the row: it is kept as a
-    // running sum, the pixel entering added and the one leaving subtracted, and summed afresh
-    // where the scan jumps (a new row, or a call out of order).
-    int neighbourSum(int x, int rowInBand, Maps* out) {
-        int count = 0;
+    // The five pixels above are a window that moves one pixel per call along the row: it is
+    // kept as a running sum, the pixel entering added and the one leaving subtracted, and
+    // summed afresh where the scan jumps (a new row, or a call out of order). The parts stay
+    // valid until the next call or store().
+    Neighbours neighbours(int x, int rowInBand) {
+        Neighbours n;
         if (rowInBand > 0) {
-            count = slideWindow(x, rowInBand);
-            *out = window_;
+            n.count = slideWindow(x, rowInBand);
+            n.parts[size_t(n.partCount++)] = &window_;
         }
         const int back = -scanDirection(rowInBand);  // towards the pixels already rendered
         for (int k = 1; k <= 2; ++k) {
             const int left = x + back * k;
             if (!inside(left)) continue;
-            if (count++ == 0)
-                *out = current_[size_t(left)];
-            else
-                out->accumulate(current_[size_t(left)]);
+            n.parts[size_t(n.partCount++)] = &current_[size_t(left)];
+            ++n.count;
         }
-        if (count == 0) *out = initial_;
-        return std::max(count, 1);
+        if (n.count == 0) {
+            n.parts[0] = &initial_;
+            n.partCount = n.count = 1;
+        }
+        return n;
     }
     // The pixel's maps once it is rendered (Algorithm 1, line 24). They are swapped into the
     // row, so *maps is left holding stale maps whose memory the next pixel reuses.
@@ -75,18 +88,15 @@ class MapRows {
     int slideWindow(int x, int rowInBand) {
         const int d = scanDirection(rowInBand);
         if (rowInBand == windowRow_ && x == windowX_ + d) {
-            if (inside(x + 2 * d)) window_.accumulate(above_[size_t(x + 2 * d)]);
-            if (inside(x - 3 * d)) window_.accumulate(above_[size_t(x - 3 * d)], -1);
+            const int entering = x + 2 * d, leaving = x - 3 * d;
+            window_.slide(inside(entering) ? &above_[size_t(entering)] : nullptr,
+                          inside(leaving) ? &above_[size_t(leaving)] : nullptr);
         } else {
-            bool first = true;
-            for (int dx = -2; dx <= 2; ++dx) {
-                if (!inside(x + dx)) continue;
-                if (first)
-                    window_ = above_[size_t(x + dx)];
-                else
-                    window_.accumulate(above_[size_t(x + dx)]);
-                first = false;
-            }
+            std::array<const Maps*, 5> parts;
+            size_t count = 0;
+            for (int dx = -2; dx <= 2; ++dx)
+                if (inside(x + dx)) parts[count++] = &above_[size_t(x + dx)];
+            window_.assignSum(std::span<const Maps* const>(parts.data(), count), false);
         }
         windowRow_ = rowInBand;
         windowX_ = x;

@@ -39,8 +39,7 @@ void TaisPixels::render(const PixelVisit& visit, PixelWork& work) {
     // Fig. 3: the neighbours' average, normalised (which makes it independent of how many
     // were averaged) so that it and this pixel's own samples, normalised too, weigh equally in
     // what the pixel passes on.
-    rows_.neighbourSum(visit.x, row_, &maps_);
-    maps_.normalize();
+    maps_.assignSum(rows_.neighbours(visit.x, row_).list(), /*normalize=*/true);
     temporary_.clear();
     const uint32_t pixel =
         uint32_t(visit.y) * uint32_t(scene_.camera().width()) + uint32_t(visit.x);
