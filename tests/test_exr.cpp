@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "io/exr_io.h"
 #include "render/render_output.h"
@@ -71,6 +74,31 @@ TEST(Exr, ReadingAMissingFileNamesIt) {
         FAIL();
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/file.exr"), std::string::npos);
+    }
+}
+
+// A header attribute whose declared size exceeds the file is refused by its name before
+// OpenEXR would allocate that size (the fuzz finding regressions/exr/openexr_2gb_string_...).
+TEST(Exr, AnAttributeLargerThanTheFileIsRefusedBeforeReading) {
+    const fs::path file = scratchDirectory() / "huge_attribute.exr";
+    writeExr(file, filmToExr(Film(2, 2)));
+    std::string bytes;
+    {
+        std::ifstream in(file, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    // The first attribute's size follows its name and type, 8 bytes into the file.
+    const size_t name = bytes.find('\0', 8), type = bytes.find('\0', name + 1);
+    bytes.replace(type + 1, 4, std::string("\x00\x00\x00\x7a", 4));  // 2 GiB
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    try {
+        readExr(file);
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("malformed header: attribute \"" + bytes.substr(8, name - 8) + "\""),
+                  std::string::npos)
+            << what;
     }
 }
 

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +26,51 @@ namespace {
 // The most values (pixels × channels) readExr allocates for: 2^28 floats, 1 GiB. A larger
 // image is a damaged header, not one this project reads.
 constexpr int64_t kMaxValues = int64_t(1) << 28;
+
+// Every header attribute's declared size fits in the file. Debian's OpenEXR 3.1 allocates an
+// attribute's declared size before reading it: `make fuzz` found a 123-byte file declaring a
+// 2 GB string that took 2 GiB and seconds to refuse (tests/fuzz/regressions/exr/). The walk
+// follows the file layout (magic, version and flags, then each part's attributes as name, type,
+// 32-bit size and value, each part's list ended by an empty name); OpenEXR checks the rest.
+void checkAttributeSizes(const std::filesystem::path& file) {
+    constexpr size_t kHeaderBytes = size_t(16) << 20;  // headers past this go unchecked
+    const uint64_t fileSize = std::filesystem::file_size(file);
+    std::string bytes(size_t(std::min<uint64_t>(fileSize, kHeaderBytes)), '\0');
+    std::ifstream(file, std::ios::binary).read(bytes.data(), std::streamsize(bytes.size()));
+    if (bytes.size() < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0)
+        return;                                       // OpenEXR says why
+    const bool multipart = uint8_t(bytes[6]) & 0x10;  // bit 12 of the version field
+    size_t at = 8;
+    // The next null-terminated name, or nullopt where the checked bytes end.
+    auto name = [&]() -> std::optional<std::string> {
+        const size_t end = bytes.find('\0', at);
+        if (end == std::string::npos) return std::nullopt;
+        std::string text = bytes.substr(at, end - at);
+        at = end + 1;
+        return text;
+    };
+    for (;;) {  // each part's header
+        int attributes = 0;
+        for (;;) {
+            const auto attribute = name();
+            if (!attribute) return;
+            if (attribute->empty()) break;
+            if (!name() || bytes.size() - at < 4) return;  // the type, the size
+            uint32_t size = 0;
+            for (int k = 3; k >= 0; --k)
+                size = size << 8 | uint8_t(bytes[at + size_t(k)]);
+            at += 4;
+            if (size > fileSize - at)
+                throw std::runtime_error("malformed header: attribute \"" + *attribute + "\" of " +
+                                         std::to_string(size) + " bytes in a file of " +
+                                         std::to_string(fileSize));
+            if (size > bytes.size() - at) return;
+            at += size;
+            ++attributes;
+        }
+        if (!multipart || attributes == 0) return;
+    }
+}
 }  // namespace
 
 void writeExr(const std::filesystem::path& file, const ExrImage& image, int threads) {
@@ -66,6 +113,7 @@ void writeExr(const std::filesystem::path& file, const ExrImage& image, int thre
 
 ExrImage readExr(const std::filesystem::path& file) {
     try {
+        checkAttributeSizes(file);
         Imf::InputFile in(file.c_str());
         const Imath::Box2i window = in.header().dataWindow();
         // In 64 bits: a damaged header's window can span more than an int holds.
