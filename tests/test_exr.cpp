@@ -102,5 +102,25 @@ TEST(Exr, AnAttributeLargerThanTheFileIsRefusedBeforeReading) {
     }
 }
 
+// The same in a multi-part file's second header (part 0 is well formed).
+TEST(Exr, AnAttributeLargerThanTheFileInALaterPartIsRefused) {
+    const fs::path file = scratchDirectory() / "multipart.exr";
+    using namespace std::string_literals;
+    std::ofstream(file, std::ios::binary)
+        << "\x76\x2f\x31\x01\x02\x10\x00\x00"s  // magic; version 2, multi-part
+        << "name\0string\0\x01\x00\x00\x00"s
+        << "a"
+        << "\0"s                              // part 0: one attribute, end
+        << "big\0string\0\x00\x00\x00\x7a"s;  // part 1: 2 GiB declared
+    try {
+        readExr(file);
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("malformed header: attribute \"big\""),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace rr::test

@@ -33,13 +33,13 @@ constexpr int64_t kMaxValues = int64_t(1) << 28;
 // follows the file layout (magic, version and flags, then each part's attributes as name, type,
 // 32-bit size and value, each part's list ended by an empty name); OpenEXR checks the rest.
 void checkAttributeSizes(const std::filesystem::path& file) {
-    constexpr size_t kHeaderBytes = size_t(16) << 20;  // headers past this go unchecked
+    constexpr size_t kHeaderBytes = size_t(1) << 20;  // headers past this go unchecked
     const uint64_t fileSize = std::filesystem::file_size(file);
     std::string bytes(size_t(std::min<uint64_t>(fileSize, kHeaderBytes)), '\0');
     std::ifstream(file, std::ios::binary).read(bytes.data(), std::streamsize(bytes.size()));
     if (bytes.size() < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0)
         return;                                       // OpenEXR says why
-    const bool multipart = uint8_t(bytes[6]) & 0x10;  // bit 12 of the version field
+    const bool multipart = uint8_t(bytes[5]) & 0x10;  // bit 12 of the little-endian version field
     size_t at = 8;
     // The next null-terminated name, or nullopt where the checked bytes end.
     auto name = [&]() -> std::optional<std::string> {

@@ -289,7 +289,8 @@ TEST(TemporaryMaps, SamplesAreCreditedTheConstantAndBlackPixelsAreUniform) {
 
 // assignSum and slide, the one-pass forms the scan uses, give the bits of the operations they
 // replace: a copy, an accumulate() per further part and a normalize(); accumulate(+1), then
-// accumulate(−1). (Equal bits keep TAIS's renders identical to the multi-pass code's.)
+// accumulate(−1). (Equal bits keep TAIS's renders identical to the multi-pass code's.) One to
+// five parts: every loop assignSum has.
 TEST(Maps, OnePassSumsAndSlidesGiveTheBitsOfTheirSteps) {
     auto map1 = [](int seed) {
         std::vector<double> w(7);
@@ -324,17 +325,18 @@ TEST(Maps, OnePassSumsAndSlidesGiveTheBitsOfTheirSteps) {
         EXPECT_EQ(cells(a), cells(b)) << what;
     };
     auto check = [&](auto make, const char* what) {
-        const auto p0 = make(1), p1 = make(2), p2 = make(3);
-        for (bool normalize : {false, true}) {
-            auto steps = p0;
-            steps.accumulate(p1);
-            steps.accumulate(p2);
-            if (normalize) steps.normalize();
-            auto fused = make(9);  // any prior content is overwritten
-            const std::array parts = {&p0, &p1, &p2};
-            fused.assignSum(parts, normalize);
-            expectSameBits(fused, steps, what);
-        }
+        const auto p0 = make(1), p1 = make(2), p2 = make(3), p3 = make(4), p4 = make(5);
+        const std::array parts = {&p0, &p1, &p2, &p3, &p4};
+        for (size_t count = 1; count <= parts.size(); ++count)  // each loop of assignSum
+            for (bool normalize : {false, true}) {
+                auto steps = p0;
+                for (size_t k = 1; k < count; ++k)
+                    steps.accumulate(*parts[k]);
+                if (normalize) steps.normalize();
+                auto fused = make(9);  // any prior content is overwritten
+                fused.assignSum(std::span(parts.data(), count), normalize);
+                expectSameBits(fused, steps, what);
+            }
         auto steps = p0;
         steps.accumulate(p1);
         steps.accumulate(p2, -1);

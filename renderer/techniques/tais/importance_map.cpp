@@ -62,6 +62,8 @@ double sumAt(std::span<const std::vector<double>* const> parts, size_t i) {
 // compiler vectorises; more (the window summed afresh) add part after part.
 void assignScaledSum(std::vector<double>& to, std::span<const std::vector<double>* const> parts,
                      double factor) {
+    for (const auto* p : parts)  // the loops below assume no aliasing (__restrict)
+        if (p == &to) throw std::logic_error("an importance map summed into itself");
     double* __restrict out = to.data();
     const size_t n = to.size();
     const double* __restrict a = parts[0]->data();
@@ -88,6 +90,8 @@ void assignScaledSum(std::vector<double>& to, std::span<const std::vector<double
 
 void slideSums(std::vector<double>& sums, const std::vector<double>* entering,
                const std::vector<double>* leaving) {
+    if (entering == &sums || leaving == &sums)  // the loops below assume no aliasing
+        throw std::logic_error("an importance map slid by itself");
     double* __restrict s = sums.data();
     const size_t n = sums.size();
     const double* __restrict in = entering ? entering->data() : nullptr;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace rr::tais {
@@ -24,7 +25,8 @@ float rescale(float u, float a, float b) {
 void MapGuide::record(MapKind kind, int cell, Vec2 coordinates, const Rgb& amount,
                       bool isContribution) {
     if (recordCount_ == kMaxRecords) throw std::logic_error("TAIS: too many decisions recorded");
-    records_[recordCount_++].record = Record{kind, cell, coordinates, amount, isContribution};
+    std::construct_at(&records_[recordCount_++].record,
+                      Record{kind, cell, coordinates, amount, isContribution});
 }
 
 Ray MapGuide::cameraRay(int x, int y, float* weight) {

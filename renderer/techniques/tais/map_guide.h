@@ -82,7 +82,7 @@ class MapGuide : public StandardSampling {
         bool isContribution;
     };
     // A record's storage, left uninitialised: a guide lives for one sample and record() writes
-    // every field before anything reads it, so zeroing all the slots (1.6 KiB) per sample,
+    // every field before anything reads it, so zeroing all the slots (1.4 KiB) per sample,
     // which a plain array of Records does, is waste.
     union RecordSlot {
         RecordSlot() {}
