@@ -11,13 +11,13 @@ second phase renders every time-capable technique with that time limit, and the 
 technique's runs at that spp are entered again as equal-time records at that budget."""
 import dataclasses
 import datetime
+import functools
 import math
 import resource
 import shutil
 import sys
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -119,35 +119,37 @@ def _estimated_cost(run: Run, profile: Profile) -> float:
     return run.budget * profile.resolution[0] * profile.resolution[1] * 1e-6 + 0.3
 
 
+def render_run(exp: Experiment, profile: Profile, run: Run, out_dir: Path,
+               reference_file: Path) -> RunRecord:
+    """Renders one run into out_dir and measures it against the reference: the unit of work
+    whichever engine schedules the runs."""
+    out = out_dir / run.file_name()
+    out.parent.mkdir(parents=True, exist_ok=True)
+    technique = exp.techniques[run.technique]
+    if run.kind == SPP:
+        integrator, spp = technique.integrator_for(int(run.budget))
+        renders.render_technique(exp, profile, technique, out, run.seed, spp=spp,
+                                 threads=profile.threads_per_job, integrator=integrator)
+    else:
+        renders.render_technique(exp, profile, technique, out, run.seed, seconds=run.budget,
+                                 threads=profile.threads_per_job)
+    m = renders.compare(out, reference_file, exp.relmse_reject)
+    # A sweep of samples per primary ray counts its samples, not its one pixel sample.
+    spp = m.spp * int(run.budget) if technique.samples_at else m.spp
+    return RunRecord(run.technique, run.kind, run.budget, run.seed, spp=spp, time=m.time,
+                     file=paths.relative(out), metrics=m.metrics)
+
+
 def execute(exp: Experiment, profile: Profile, runs: list[Run], out_dir: Path,
             reference_file: Path, workers: int, phase: str | None = None) -> list[RunRecord]:
     """Renders and measures every run; returns one record per run, in run order."""
     for run in runs:
         if run.kind == TIME and exp.techniques[run.technique].fixed_spp:
             raise ValueError(f"{run.technique} renders a fixed spp; it takes no time limit")
-
-    def job(run: Run) -> Callable[[], RunRecord]:
-        def work() -> RunRecord:
-            out = out_dir / run.file_name()
-            out.parent.mkdir(parents=True, exist_ok=True)
-            technique = exp.techniques[run.technique]
-            if run.kind == SPP:
-                integrator, spp = technique.integrator_for(int(run.budget))
-                renders.render_technique(exp, profile, technique, out, run.seed, spp=spp,
-                                         threads=profile.threads_per_job, integrator=integrator)
-            else:
-                renders.render_technique(exp, profile, technique, out, run.seed,
-                                         seconds=run.budget, threads=profile.threads_per_job)
-            m = renders.compare(out, reference_file, exp.relmse_reject)
-            # A sweep of samples per primary ray counts its samples, not its one pixel sample.
-            spp = m.spp * int(run.budget) if technique.samples_at else m.spp
-            return RunRecord(run.technique, run.kind, run.budget, run.seed, spp=spp,
-                             time=m.time, file=paths.relative(out), metrics=m.metrics)
-        return work
-
+    work = [functools.partial(render_run, exp, profile, r, out_dir, reference_file) for r in runs]
     costs = [_estimated_cost(r, profile) for r in runs]
     label = f"{exp.id} {profile.name}" + (f" {phase}" if phase else "")
-    return jobs.run_parallel(label, [job(r) for r in runs], costs, parallel_jobs(profile, workers))
+    return jobs.run_parallel(label, work, costs, parallel_jobs(profile, workers))
 
 
 def _column(group: list[RunRecord], metric: str) -> list[float] | None:
@@ -278,30 +280,16 @@ def _children_cpu_seconds() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def run(exp: Experiment, profile_name: str, workers: int) -> Path:
-    """Runs the whole profile and writes results/<paper>/<figure>.json. Returns its path."""
-    profile = exp.profiles[profile_name]
-    entry, reference_file = references.lookup(exp, profile)
-    started_at = datetime.datetime.now().astimezone().isoformat(timespec="seconds")
-    started = time.monotonic()
-    cpu_started = _children_cpu_seconds()
-    out_dir = paths.RENDERS / profile.name / exp.id
-    shutil.rmtree(out_dir, ignore_errors=True)
-    try:
-        records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
-        matched = matched_budgets(exp, profile, records)
-        if matched:
-            runs = matched_runs(exp, profile, matched, records)
-            if runs:
-                records += execute(exp, profile, runs, out_dir, reference_file, workers,
-                                   phase="matched time")
-            records += matched_duplicates(matched, records)
-    finally:
-        render_server.close_all()  # their CPU time counts once they have exited
+def results_document(exp: Experiment, profile: Profile, records: list[RunRecord],
+                     matched: list[MatchedBudget], entry: dict[str, Any], reference_file: Path,
+                     engine: dict[str, Any]) -> dict[str, Any]:
+    """The results document of a finished profile from its records (in run order, matched
+    duplicates last), whichever engine rendered them; refuses a too-noisy reference. `engine`
+    holds what only the engine knows: started, wall_seconds, cpu_seconds, parallel_jobs."""
     ratio = references.check_noise(exp, profile, entry, smallest_rmse(records))
     with tempfile.TemporaryDirectory() as scratch:
         fitted = slopes(exp, records, scratch)
-    document = {
+    return {
         "experiment": exp.id,
         "profile": profile.name,
         "description": exp.description,
@@ -334,13 +322,11 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "provenance": {
             "git_commit": provenance.git_commit(),
             "git_dirty": provenance.git_dirty(),
-            "started": started_at,
-            "wall_seconds": round(time.monotonic() - started, 2),
-            # CPU time of every render and measurement (user + system), the cost to budget
-            # when the profile is split into chunks.
-            "cpu_seconds": round(_children_cpu_seconds() - cpu_started, 1),
+            "started": engine["started"],
+            "wall_seconds": engine["wall_seconds"],
+            "cpu_seconds": engine["cpu_seconds"],
             "machine": provenance.machine(),
-            "parallel_jobs": parallel_jobs(profile, workers),
+            "parallel_jobs": engine["parallel_jobs"],
             "threads_per_job": profile.threads_per_job,
             "command": " ".join(sys.argv),
         },
@@ -348,6 +334,35 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "slopes": fitted,
         "runs": [to_json(r) for r in records],
     }
+
+
+def run(exp: Experiment, profile_name: str, workers: int) -> Path:
+    """Runs the whole profile and writes results/<paper>/<figure>.json. Returns its path."""
+    profile = exp.profiles[profile_name]
+    entry, reference_file = references.lookup(exp, profile)
+    started_at = datetime.datetime.now().astimezone().isoformat(timespec="seconds")
+    started = time.monotonic()
+    cpu_started = _children_cpu_seconds()
+    out_dir = paths.RENDERS / profile.name / exp.id
+    shutil.rmtree(out_dir, ignore_errors=True)
+    try:
+        records = execute(exp, profile, expand(exp, profile), out_dir, reference_file, workers)
+        matched = matched_budgets(exp, profile, records)
+        if matched:
+            runs = matched_runs(exp, profile, matched, records)
+            if runs:
+                records += execute(exp, profile, runs, out_dir, reference_file, workers,
+                                   phase="matched time")
+            records += matched_duplicates(matched, records)
+    finally:
+        render_server.close_all()  # their CPU time counts once they have exited
+    document = results_document(exp, profile, records, matched, entry, reference_file, {
+        "started": started_at,
+        "wall_seconds": round(time.monotonic() - started, 2),
+        # CPU time of every render and measurement (user + system), the cost to budget when
+        # the profile is split into chunks.
+        "cpu_seconds": round(_children_cpu_seconds() - cpu_started, 1),
+        "parallel_jobs": parallel_jobs(profile, workers)})
     out = paths.results_file(exp, profile.name)
     provenance.write_json_atomically(out, document)
     return out
