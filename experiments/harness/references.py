@@ -3,11 +3,14 @@
 A reference is the average of two independent half-references; half their RMS difference
 estimates the reference's own noise (Var((A+B)/2) = Var(A-B)/4). A comparison is refused
 when that noise is not below a fifth of the smallest error measured against the reference."""
+import contextlib
 import datetime
+import fcntl
 import hashlib
 import json
 import shutil
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -45,8 +48,26 @@ def load_manifest() -> Manifest:
     return json.loads(paths.MANIFEST.read_text())
 
 
-def save_manifest(manifest: Manifest) -> None:
-    provenance.write_json_atomically(paths.MANIFEST, manifest)
+@contextlib.contextmanager
+def _manifest_lock() -> Iterator[None]:
+    """Holds an exclusive lock on the manifest's lock file: processes that write entries of
+    different experiments at once (a workflow engine's parallel jobs) each read the others'
+    entries before writing theirs. Released when the file closes."""
+    lock = paths.MANIFEST.with_name(".manifest.lock")
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    with open(lock, "a") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        yield
+
+
+def update_manifest_entry(name: str,
+                          update: Callable[[dict[str, Any] | None], dict[str, Any]]) -> None:
+    """Replaces one entry by update(the entry or None), reading, changing and writing the
+    manifest under its lock."""
+    with _manifest_lock():
+        manifest = load_manifest()
+        manifest[name] = update(manifest.get(name))
+        provenance.write_json_atomically(paths.MANIFEST, manifest)
 
 
 def entry_name(exp: Experiment, profile: Profile) -> str:
@@ -92,16 +113,15 @@ def _same_key_entry(manifest: Manifest, wanted: str) -> tuple[str, dict[str, Any
     return None
 
 
-def _copy_reference(exp: Experiment, profile: Profile, source: str, entry: dict[str, Any],
-                    manifest: Manifest) -> None:
+def _copy_reference(exp: Experiment, profile: Profile, source: str,
+                    entry: dict[str, Any]) -> None:
     out = paths.REFERENCE / file_name(exp, profile)
     out.parent.mkdir(parents=True, exist_ok=True)
     scratch = out.with_name(f".{out.name}.copying")
     shutil.copyfile(paths.REFERENCE / entry["file"], scratch)
     scratch.replace(out)
-    manifest[entry_name(exp, profile)] = {**entry, "file": str(file_name(exp, profile)),
-                                          "copied_from": source}
-    save_manifest(manifest)
+    copied = {**entry, "file": str(file_name(exp, profile)), "copied_from": source}
+    update_manifest_entry(entry_name(exp, profile), lambda _: copied)
     print(f"[references] {entry_name(exp, profile)}: the same image as {source}, copied",
           flush=True)
 
@@ -115,7 +135,7 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
     wanted = key(exp, profile)
     same = _same_key_entry(manifest, wanted) if reuse else None
     if same is not None:
-        _copy_reference(exp, profile, *same, manifest)
+        _copy_reference(exp, profile, *same)
         return
     out = paths.REFERENCE / file_name(exp, profile)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -149,8 +169,7 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
     merged = json.loads(jobs.run_command(
         [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
     shutil.rmtree(scratch)
-    manifest = load_manifest()
-    manifest[entry_name(exp, profile)] = {
+    rendered = {
         "file": str(file_name(exp, profile)),
         "key": wanted,
         "scene": paths.relative(exp.scene),
@@ -168,7 +187,7 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
         "git_commit": provenance.git_commit(),
         "git_dirty": provenance.git_dirty(),
     }
-    save_manifest(manifest)
+    update_manifest_entry(entry_name(exp, profile), lambda _: rendered)
     print(f"[references] {paths.relative(out)}: noise σ/µ {merged['noise_sigma_over_mu']:.3g}",
           flush=True)
 
@@ -194,13 +213,10 @@ def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any], smalle
                              "the reference's noise cannot be judged against it")
     ratio = entry["noise_rmse"] / smallest_rmse
     if record:
-        manifest = load_manifest()
-        manifest[entry_name(exp, profile)]["noise_check"] = {
-            "smallest_rmse_compared": smallest_rmse,
-            "noise_ratio": ratio,
-            "max_ratio": MAX_NOISE_RATIO,
-        }
-        save_manifest(manifest)
+        check = {"smallest_rmse_compared": smallest_rmse, "noise_ratio": ratio,
+                 "max_ratio": MAX_NOISE_RATIO}
+        update_manifest_entry(entry_name(exp, profile),
+                              lambda current: {**current, "noise_check": check})
     if ratio >= MAX_NOISE_RATIO:
         raise HarnessFailure(
             f"{exp.id}: the {profile.name} reference's noise (RMSE {entry['noise_rmse']:.3g}) is "

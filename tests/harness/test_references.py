@@ -6,6 +6,7 @@ import contextlib
 import hashlib
 import io
 import json
+import multiprocessing
 import tempfile
 import unittest
 from pathlib import Path
@@ -135,6 +136,32 @@ class ResumedHalves(unittest.TestCase):
         with contextlib.redirect_stdout(io.StringIO()):
             references.render_reference(self.exp, self.profile, reuse=False)
         self.assertEqual(self.rendered_seeds, [first, first, second])
+
+
+def _write_entries(writer: int, count: int) -> None:
+    """A forked process's part of the concurrent-writers test: `count` entries of its own."""
+    for i in range(count):
+        references.update_manifest_entry(f"writer{writer}/entry{i}", lambda _: {"i": i})
+
+
+class ConcurrentManifestWriters(unittest.TestCase):
+    """Parallel jobs (a workflow engine's) write entries of different experiments at once;
+    each read-modify-write holds the manifest's lock, so none loses another's entry."""
+
+    def test_no_entry_is_lost(self):
+        use_scratch_reference_directory(self)
+        paths.REFERENCE.mkdir(parents=True)
+        writers, count = 4, 40
+        context = multiprocessing.get_context("fork")  # the children keep the scratch paths
+        processes = [context.Process(target=_write_entries, args=(w, count))
+                     for w in range(writers)]
+        for process in processes:
+            process.start()
+        for process in processes:
+            process.join()
+        self.assertEqual([p.exitcode for p in processes], [0] * writers)
+        manifest = json.loads(paths.MANIFEST.read_text())
+        self.assertEqual(len(manifest), writers * count)
 
 
 if __name__ == "__main__":
