@@ -64,19 +64,15 @@ def render_time(binary: Path, scene_args: list[object], spp: int, seed: int,
 
 
 def experiment_ratio(exp: config.Experiment, profile: config.Profile) -> float | None:
-    """TAIS over path_mis in mean render time at the table spp, in the experiment's results."""
+    """TAIS over path_mis in mean render time at the table spp, from the experiment's summary."""
     results = paths.results_file(exp, profile.name)
     if not results.exists():
         return None
-    runs = json.loads(results.read_text())["runs"]
-
-    def times(technique: str) -> list[float]:
-        return [r["time"] for r in runs if r["technique"] == technique and r["kind"] == "spp"
-                and r["budget"] == profile.table_spp]
-    tais, baseline = times(tais_technique(exp.figure)), times(BASELINE)
-    if not tais or not baseline:
-        return None
-    return statistics.fmean(tais) / statistics.fmean(baseline)
+    mean_time = {e["technique"]: e["time"]["mean"]
+                 for e in json.loads(results.read_text())["summary"]
+                 if e["kind"] == "spp" and e["budget"] == profile.table_spp}
+    tais, baseline = mean_time.get(tais_technique(exp.figure)), mean_time.get(BASELINE)
+    return tais / baseline if tais and baseline else None
 
 
 def measure(profile_name: str, seeds: int, before: Path | None) -> list[dict]:
