@@ -18,19 +18,31 @@ HARNESS     = BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile $(PROFILE)
 # ONLY=<paper> or <paper>/<figure> (several, space-separated): references, experiments and
 # reproduce take those configs only, so a long profile runs in resumable chunks.
 ONLY_CONFIGS = $(foreach o,$(ONLY),$(if $(findstring /,$(o)),configs/experiments/$(o).json,$(wildcard configs/experiments/$(o)/*.json)))
+# Who schedules the renders of `run`, `experiments` and `reproduce`: the harness's own engine
+# (harness), or the Snakemake workflow experiments/Snakefile on JOBS local cores (snakemake) or
+# as Slurm jobs through experiments/profiles/slurm (slurm). The same numbers either way.
+ENGINE     ?= harness
+ifeq ($(filter $(ENGINE),harness snakemake slurm),)
+$(error ENGINE=$(ENGINE): expected harness, snakemake or slurm)
+endif
+SNAKEMAKE   = BUILD=$(BUILD) snakemake -s experiments/Snakefile \
+              $(if $(filter slurm,$(ENGINE)),--profile experiments/profiles/slurm,--cores $(JOBS) --rerun-incomplete)
+# The workflow's --config: the profile and, with ONLY, the configs.
+SNAKEMAKE_CONFIG = --config profile=$(1) $(if $(ONLY),configs="$(ONLY_CONFIGS)")
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
             python3-jsonschema python3-imath \
             libembree-dev libtbb-dev \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
-            libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time
+            libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time snakemake
 
 # `make fuzz` only: clang with libFuzzer, and the symbolizer for its reports.
 FUZZ_PACKAGES := clang-14 libclang-rt-14-dev llvm-14
+CLUSTER_PACKAGES := slurm-wlm munge
 
 .PHONY: deps configure build run render test asan fuzz stress bench rr-study assets references experiments \
-        tables plots reproduce previews fresh-check format clean
+        tables plots reproduce previews fresh-check cluster-test format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -54,7 +66,12 @@ build: configure
 # The main job: the quick profile of every experiment (references if missing, renders,
 # results JSON, tables, plots), then the paths of what it wrote.
 run: build
+ifeq ($(ENGINE),harness)
 	BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile quick reproduce
+else
+	$(HARNESS) validate $(ONLY_CONFIGS)
+	$(SNAKEMAKE) all $(call SNAKEMAKE_CONFIG,quick)
+endif
 
 # Renders one scene (EXR + PNG preview under results/): make render SCENE=configs/scenes/x.json
 render: build
@@ -66,7 +83,12 @@ references: build
 
 # Every experiment of the profile -> results/<paper>/<figure>.json (references must exist).
 experiments: build
+ifeq ($(ENGINE),harness)
 	$(HARNESS) run $(ONLY_CONFIGS)
+else
+	$(HARNESS) validate $(ONLY_CONFIGS)
+	$(SNAKEMAKE) results $(call SNAKEMAKE_CONFIG,$(PROFILE))
+endif
 
 tables: deps
 	$(HARNESS) tables
@@ -76,7 +98,12 @@ plots: deps
 
 # References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
 reproduce: build
+ifeq ($(ENGINE),harness)
 	$(HARNESS) reproduce $(ONLY_CONFIGS)
+else
+	$(HARNESS) validate $(ONLY_CONFIGS)
+	$(SNAKEMAKE) all $(call SNAKEMAKE_CONFIG,$(PROFILE))
+endif
 
 # Small renders of every scene (results/previews/<scene>.png, git-ignored) and a labelled
 # contact sheet, results/previews/contact_sheet.png (committed). A few minutes on 2 cores.
@@ -108,6 +135,13 @@ fuzz: deps
 	  -DRENDERER_FUZZ=ON >/dev/null
 	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_scene fuzz_ply fuzz_obj fuzz_exr fuzz_hdr
 	tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(JOBS)
+
+# The workflow's Slurm path for real: a single-node Slurm on this machine (slurm-wlm, munge;
+# slurm.conf generated under build/cluster/) runs the Snakemake engine's test through
+# experiments/profiles/slurm. Needs root (it starts the daemons); prints each step's time.
+cluster-test: build
+	@$(MAKE) --no-print-directory deps PACKAGES="$(CLUSTER_PACKAGES)"
+	$(SUDO) tests/cluster/slurm_test.sh $(BUILD)
 
 # make test and make render in a minimal Debian 12 root (debootstrap, cached under ~/.cache)
 # holding a clean clone of HEAD and ../shared, with nothing installed by hand but make.

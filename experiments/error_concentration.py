@@ -40,7 +40,7 @@ def main() -> None:
     args = parser.parse_args()
     doc = json.loads(Path(args.results).read_text())
     spp = args.spp or doc["table"]["spp"]
-    reference = read_rgb(paths.ROOT / doc["reference"]["file"])
+    reference = read_rgb(paths.output(doc["reference"]["file"]))
     keys = ["sigma_over_mu", "share_0.1%", "sigma_over_mu_without_0.1%", "share_1%",
             "sigma_over_mu_without_1%"]
     print(f"{doc['experiment']} ({doc['profile']}), {spp} spp, mean over "
@@ -53,7 +53,7 @@ def main() -> None:
         at_budget = runs.get(TechniqueBudget(technique, SPP, spp))
         if not at_budget:
             continue
-        rows = [concentration(read_rgb(paths.ROOT / r.file), reference) for r in at_budget]
+        rows = [concentration(read_rgb(paths.output(r.file)), reference) for r in at_budget]
         means = [np.mean([row[k] for row in rows]) for k in keys]
         print(f"| {technique} | {means[0]:.3g} | {means[1]:.0%} | {means[2]:.3g} | "
               f"{means[3]:.0%} | {means[4]:.3g} |")

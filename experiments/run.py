@@ -12,6 +12,13 @@
   run.py reproduce                               references, run, tables and plots
   run.py overhead                                each experiment's time outside render loops
 
+The units of work of the workflow engine (experiments/Snakefile; harness/workflow.py):
+  run.py render-one      CONFIG --run T/B_seedN.exr  one render, its record beside it
+  run.py matched         CONFIG                      the equal-time budgets after phase one
+  run.py assemble        CONFIG                      the records -> results/<paper>/<figure>.json
+  run.py reference-half  CONFIG --half 0|1 [--threads N] [--if-needed]
+  run.py reference-merge CONFIG --stamp FILE         the halves -> the reference, or a copy
+
 CONFIG defaults to every configs/experiments/<paper>/<figure>.json. --profile quick|full
 (default quick, or $PROFILE). Exit status: 0 done, 1 a step failed (or a threshold), 2 bad
 input (one message naming the JSON pointer)."""
@@ -156,6 +163,44 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_render_one(args: argparse.Namespace) -> int:
+    from harness import workflow
+    exp = config.load(args.config)
+    workflow.render_one(exp, exp.profiles[args.profile], args.run)
+    return 0
+
+
+def cmd_matched(args: argparse.Namespace) -> int:
+    from harness import workflow
+    exp = config.load(args.config)
+    workflow.write_matched(exp, exp.profiles[args.profile])
+    return 0
+
+
+def cmd_assemble(args: argparse.Namespace) -> int:
+    from harness import workflow
+    exp = config.load(args.config)
+    out = workflow.assemble(exp, exp.profiles[args.profile])
+    print(f"[{exp.id}] wrote {paths.relative(out)}", flush=True)
+    return 0
+
+
+def cmd_reference_half(args: argparse.Namespace) -> int:
+    from harness import workflow
+    exp = config.load(args.config)
+    workflow.render_reference_half(exp, exp.profiles[args.profile], args.half, args.threads,
+                                   args.if_needed)
+    return 0
+
+
+def cmd_reference_merge(args: argparse.Namespace) -> int:
+    from harness import workflow
+    exp = config.load(args.config)
+    outcome = workflow.reference_merge(exp, exp.profiles[args.profile], args.stamp)
+    print(f"[references] {exp.id}/{args.profile}: {outcome}", flush=True)
+    return 0
+
+
 def positive_int(text: str) -> int:
     value = int(text)
     if value < 1:
@@ -189,6 +234,25 @@ def parser() -> argparse.ArgumentParser:
     sub.add_parser("tables").set_defaults(func=cmd_tables)
     sub.add_parser("plots").set_defaults(func=cmd_plots)
     sub.add_parser("overhead").set_defaults(func=cmd_overhead)
+    p = sub.add_parser("render-one")
+    p.add_argument("config", type=Path)
+    p.add_argument("--run", required=True, help="the render, <technique>/<budget>_seed<n>.exr")
+    p.set_defaults(func=cmd_render_one)
+    for name, func in (("matched", cmd_matched), ("assemble", cmd_assemble)):
+        sub.add_parser(name).add_argument("config", type=Path)
+        sub.choices[name].set_defaults(func=func)
+    p = sub.add_parser("reference-merge")
+    p.add_argument("config", type=Path)
+    p.add_argument("--stamp", type=Path, required=True,
+                   help="written once the reference is current: its hash")
+    p.set_defaults(func=cmd_reference_merge)
+    p = sub.add_parser("reference-half")
+    p.add_argument("config", type=Path)
+    p.add_argument("--half", type=int, choices=[0, 1], required=True)
+    p.add_argument("--threads", type=positive_int, default=jobs.default_jobs())
+    p.add_argument("--if-needed", action="store_true",
+                   help="only if reference-merge will need it; else leave empty files")
+    p.set_defaults(func=cmd_reference_half)
     p = sub.add_parser("calibrate")
     p.add_argument("config", type=Path)
     p.add_argument("--spp", type=int, nargs="*", help="budgets to set thresholds at")

@@ -275,7 +275,7 @@ def smallest_rmse(records: list[RunRecord]) -> float:
     return min(r.metrics["rmse"] for r in records)
 
 
-def _children_cpu_seconds() -> float:
+def children_cpu_seconds() -> float:
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
 
@@ -285,7 +285,8 @@ def results_document(exp: Experiment, profile: Profile, records: list[RunRecord]
                      engine: dict[str, Any]) -> dict[str, Any]:
     """The results document of a finished profile from its records (in run order, matched
     duplicates last), whichever engine rendered them; refuses a too-noisy reference. `engine`
-    holds what only the engine knows: started, wall_seconds, cpu_seconds, parallel_jobs."""
+    holds what only the engine knows: its name ("engine"), started, wall_seconds, cpu_seconds,
+    parallel_jobs, and optionally the hosts its jobs ran on."""
     ratio = references.check_noise(exp, profile, entry, smallest_rmse(records))
     with tempfile.TemporaryDirectory() as scratch:
         fitted = slopes(exp, records, scratch)
@@ -322,6 +323,7 @@ def results_document(exp: Experiment, profile: Profile, records: list[RunRecord]
         "provenance": {
             "git_commit": provenance.git_commit(),
             "git_dirty": provenance.git_dirty(),
+            "engine": engine["engine"],
             "started": engine["started"],
             "wall_seconds": engine["wall_seconds"],
             "cpu_seconds": engine["cpu_seconds"],
@@ -329,6 +331,7 @@ def results_document(exp: Experiment, profile: Profile, records: list[RunRecord]
             "parallel_jobs": engine["parallel_jobs"],
             "threads_per_job": profile.threads_per_job,
             "command": " ".join(sys.argv),
+            **({"hosts": engine["hosts"]} if "hosts" in engine else {}),
         },
         "summary": [to_json(s) for s in summarise(exp, records)],
         "slopes": fitted,
@@ -342,7 +345,7 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
     entry, reference_file = references.lookup(exp, profile)
     started_at = datetime.datetime.now().astimezone().isoformat(timespec="seconds")
     started = time.monotonic()
-    cpu_started = _children_cpu_seconds()
+    cpu_started = children_cpu_seconds()
     out_dir = paths.RENDERS / profile.name / exp.id
     shutil.rmtree(out_dir, ignore_errors=True)
     try:
@@ -357,11 +360,12 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
     finally:
         render_server.close_all()  # their CPU time counts once they have exited
     document = results_document(exp, profile, records, matched, entry, reference_file, {
+        "engine": "harness",
         "started": started_at,
         "wall_seconds": round(time.monotonic() - started, 2),
         # CPU time of every render and measurement (user + system), the cost to budget when
         # the profile is split into chunks.
-        "cpu_seconds": round(_children_cpu_seconds() - cpu_started, 1),
+        "cpu_seconds": round(children_cpu_seconds() - cpu_started, 1),
         "parallel_jobs": parallel_jobs(profile, workers)})
     out = paths.results_file(exp, profile.name)
     provenance.write_json_atomically(out, document)

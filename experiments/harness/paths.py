@@ -12,11 +12,15 @@ ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs" / "experiments"
 SCENES = ROOT / "configs" / "scenes"
 SCHEMAS = ROOT / "configs" / "schema"  # JSON Schemas of the configs, one per kind
-RESULTS = ROOT / "results"
+# What the harness writes lives under the repository, or under $HARNESS_OUTPUT_ROOT (its
+# results/ and reference/) when that is set: a scratch tree for tests that run the harness in
+# subprocesses, such as the workflow engine's (experiments/Snakefile).
+OUTPUT_ROOT = Path(os.environ.get("HARNESS_OUTPUT_ROOT") or ROOT).resolve()
+RESULTS = OUTPUT_ROOT / "results"
 RENDERS = RESULTS / "renders"  # per-run EXRs, git-ignored
 TABLES = RESULTS / "tables"
 PLOTS = RESULTS / "plots"
-REFERENCE = ROOT / "reference"
+REFERENCE = OUTPUT_ROOT / "reference"
 MANIFEST = REFERENCE / "manifest.json"
 
 
@@ -53,7 +57,16 @@ def all_experiment_configs() -> list[Path]:
 
 
 def relative(path: str | Path) -> str:
-    try:
-        return str(Path(path).resolve().relative_to(ROOT))
-    except ValueError:
-        return str(path)
+    """A path as results and manifests record it: relative to the repository root, or, for an
+    output in a scratch tree (OUTPUT_ROOT), relative to that, so that the records read the same
+    wherever they were written. Read them back with output()."""
+    resolved = Path(path).resolve()
+    for root in (OUTPUT_ROOT, ROOT):  # the scratch tree first: it may lie in the repository
+        if resolved.is_relative_to(root):
+            return str(resolved.relative_to(root))
+    return str(path)
+
+
+def output(recorded: str | Path) -> Path:
+    """An output's path as relative() recorded it."""
+    return OUTPUT_ROOT / recorded

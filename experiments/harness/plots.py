@@ -94,14 +94,14 @@ def crops(doc: Results, out: Path) -> bool:
     """Reference | baseline | each technique, seed 0 at the table's sample budget. Returns
     False when the renders are not on disk (results from another machine)."""
     budget = doc["table"]["spp"]
-    panels = [("reference", paths.ROOT / doc["reference"]["file"])]
+    panels = [("reference", paths.output(doc["reference"]["file"]))]
     techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
     runs = records.group_by_key(records.read_runs(doc))
     metric = doc["metrics"][0]
     for t in techniques:
         run = next(r for r in runs[TechniqueBudget(t, SPP, budget)] if r.seed == 0)
         panels.append((f"{t}, {budget:g} spp\n{tables.METRIC_NAMES[metric]} "
-                       f"{run.metrics[metric]:.3g}", paths.ROOT / run.file))
+                       f"{run.metrics[metric]:.3g}", paths.output(run.file)))
     if not all(file.exists() for _, file in panels):
         return False
     fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.8), squeeze=False,

@@ -126,60 +126,62 @@ def _copy_reference(exp: Experiment, profile: Profile, source: str,
           flush=True)
 
 
-def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> None:
-    """Renders the two halves with all cores, merges them, records the manifest entry; or, with
-    `reuse`, copies a current reference with the same key, and resumes from a half that a
-    killed run finished. Without `reuse` (forced, e.g. after fixing an integrator) every half is
-    rendered again."""
-    manifest = load_manifest()
-    wanted = key(exp, profile)
-    same = _same_key_entry(manifest, wanted) if reuse else None
-    if same is not None:
-        _copy_reference(exp, profile, *same)
-        return
+def halves_dir(exp: Experiment, profile: Profile) -> Path:
+    """Where the two halves of a reference are rendered: named by its key, so a run killed
+    after its first half resumes there, and experiments of one key share them."""
+    return paths.REFERENCE / f".halves-{key(exp, profile)[:16]}"
+
+
+def half_seeds() -> list[int]:
+    return [renders.REFERENCE_SEED_BASE, renders.REFERENCE_SEED_BASE + 1]
+
+
+def render_half(exp: Experiment, profile: Profile, index: int, scratch: Path,
+                threads: int) -> dict[str, Any]:
+    """Renders half `index` (0 or 1) of the reference into `scratch` unless it is complete
+    there; returns its provenance. A half is complete once its stamp (commit, seconds, CPUs) is
+    beside it: the stamp is written after the render succeeded, while a render that Ctrl-C
+    stopped leaves a valid EXR of fewer samples and no stamp. (An empty EXR is a workflow's
+    placeholder for a half it did not need: workflow.render_reference_half.)"""
+    seed = half_seeds()[index]
+    half = scratch / f"half{index}.exr"
+    stamp = half.with_suffix(".json")
+    if half.exists() and half.stat().st_size > 0 and stamp.exists():
+        print(f"[references] {paths.relative(half)}: rendered before, reused", flush=True)
+        return {"seed": seed, **json.loads(stamp.read_text()), "resumed": True}
+    scratch.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    renders.render(exp, profile, exp.reference_integrator, half, seed,
+                   spp=profile.reference_spp // 2, threads=threads)
+    # The CPUs it could run on: a cluster job's allocation, which should hold its threads.
+    origin = {"git_commit": provenance.git_commit(), "git_dirty": provenance.git_dirty(),
+              "seconds": round(time.monotonic() - started, 2), "threads": threads,
+              "cpus": jobs.default_jobs()}
+    provenance.write_json_atomically(stamp, origin)
+    return {"seed": seed, **origin, "resumed": False}
+
+
+def merge_halves(exp: Experiment, profile: Profile, scratch: Path,
+                 halves: list[dict[str, Any]], wall_seconds: float) -> None:
+    """Merges the two halves in `scratch` into the reference and records its manifest entry
+    (the halves' provenance, and `wall_seconds` spent on them and the merge)."""
     out = paths.REFERENCE / file_name(exp, profile)
     out.parent.mkdir(parents=True, exist_ok=True)
-    half_spp = profile.reference_spp // 2
-    seeds = [renders.REFERENCE_SEED_BASE, renders.REFERENCE_SEED_BASE + 1]
-    print(f"[references] {entry_name(exp, profile)}: 2 x {half_spp} spp of "
-          f"{exp.reference_integrator['type']} at {profile.resolution[0]}x{profile.resolution[1]}",
-          flush=True)
     started = time.monotonic()
-    # Halves live in a directory named by the key, so a render killed after its first half
-    # resumes there. A half is complete once its stamp (its commit, recorded in the manifest)
-    # is beside it: the stamp is written after the render succeeded, while a render that Ctrl-C
-    # stopped leaves a valid EXR of fewer samples and no stamp.
-    scratch = paths.REFERENCE / f".halves-{wanted[:16]}"
-    if not reuse:
-        shutil.rmtree(scratch, ignore_errors=True)
-    scratch.mkdir(exist_ok=True)
-    halves = [scratch / f"half{i}.exr" for i in range(2)]
-    provenances = []
-    for half, seed in zip(halves, seeds):
-        stamp = half.with_suffix(".json")
-        if half.exists() and stamp.exists():
-            print(f"[references] {paths.relative(half)}: rendered before, reused", flush=True)
-            provenances.append({"seed": seed, **json.loads(stamp.read_text()), "resumed": True})
-            continue
-        origin = {"git_commit": provenance.git_commit(), "git_dirty": provenance.git_dirty()}
-        renders.render(exp, profile, exp.reference_integrator, half, seed, spp=half_spp,
-                       threads=jobs.default_jobs())
-        provenance.write_json_atomically(stamp, origin)
-        provenances.append({"seed": seed, **origin, "resumed": False})
     merged = json.loads(jobs.run_command(
-        [paths.metrics_binary(), "merge", *halves, "--out", out, "--json"]))
-    shutil.rmtree(scratch)
+        [paths.metrics_binary(), "merge", *(scratch / f"half{i}.exr" for i in range(2)),
+         "--out", out, "--json"]))
     rendered = {
         "file": str(file_name(exp, profile)),
-        "key": wanted,
+        "key": key(exp, profile),
         "scene": paths.relative(exp.scene),
         "set": exp.overrides,
         "integrator": exp.reference_integrator,
         "resolution": list(profile.resolution),
         "spp": profile.reference_spp,
-        "seeds": seeds,
-        "wall_seconds": round(time.monotonic() - started, 2),
-        "halves": provenances,
+        "seeds": half_seeds(),
+        "wall_seconds": round(wall_seconds + time.monotonic() - started, 2),
+        "halves": halves,
         "sha256": provenance.sha256_file(out),
         "noise_rmse": merged["noise_rmse"],
         "noise_sigma_over_mu": merged["noise_sigma_over_mu"],
@@ -190,6 +192,38 @@ def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> N
     update_manifest_entry(entry_name(exp, profile), lambda _: rendered)
     print(f"[references] {paths.relative(out)}: noise σ/µ {merged['noise_sigma_over_mu']:.3g}",
           flush=True)
+
+
+def same_key_entry(exp: Experiment, profile: Profile) -> tuple[str, dict[str, Any]] | None:
+    """A current reference of another experiment with this one's key (its name and entry)."""
+    return _same_key_entry(load_manifest(), key(exp, profile))
+
+
+def copy_same_key(exp: Experiment, profile: Profile) -> bool:
+    """Copies a current reference of another experiment with the same key, if there is one."""
+    same = same_key_entry(exp, profile)
+    if same is not None:
+        _copy_reference(exp, profile, *same)
+    return same is not None
+
+
+def render_reference(exp: Experiment, profile: Profile, reuse: bool = True) -> None:
+    """Renders the two halves with all cores, merges them, records the manifest entry; or, with
+    `reuse`, copies a current reference with the same key, and resumes from a half that a
+    killed run finished. Without `reuse` (forced, e.g. after fixing an integrator) every half is
+    rendered again."""
+    if reuse and copy_same_key(exp, profile):
+        return
+    print(f"[references] {entry_name(exp, profile)}: 2 x {profile.reference_spp // 2} spp of "
+          f"{exp.reference_integrator['type']} at {profile.resolution[0]}x{profile.resolution[1]}",
+          flush=True)
+    started = time.monotonic()
+    scratch = halves_dir(exp, profile)
+    if not reuse:
+        shutil.rmtree(scratch, ignore_errors=True)
+    halves = [render_half(exp, profile, i, scratch, jobs.default_jobs()) for i in range(2)]
+    merge_halves(exp, profile, scratch, halves, time.monotonic() - started)
+    shutil.rmtree(scratch)
 
 
 def ensure(experiments: list[Experiment], profile_name: str, force: bool = False) -> None:

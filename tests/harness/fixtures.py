@@ -37,6 +37,27 @@ def valid():
     return copy.deepcopy(VALID)
 
 
+def tiny_matched():
+    """A config small enough to run end to end in a few seconds with the real renderer: 32×32
+    pixels, 2 and 8 spp, 5 seeds; `path_mis` is marked fixed-spp and matched at 8 spp. No
+    seconds budget: on a fast machine its renders could get so many samples that the
+    reference's noise check would refuse them; matched times scale with the machine."""
+    return {
+        "description": "Matched equal time, end to end.",
+        "scene": "configs/scenes/cornell_spheres.json",
+        "set": {"/render/sampler": "independent"},
+        "techniques": {"path": {"integrator": {"type": "path"}},
+                       "path_mis": {"integrator": {"type": "path_mis"}, "fixed_spp": True}},
+        "baseline": "path",
+        "metrics": ["sigma_over_mu", "p_eff"],
+        "reference": {"integrator": {"type": "path_mis"}},
+        "profiles": {name: {"resolution": [32, 32], "spp": [2, 8], "seconds": [],
+                            "matched_spp": [8], "seeds": 5, "reference_spp": 1024,
+                            "table": {"spp": 8, "seconds": "matched"}}
+                     for name in ("quick", "full")},
+    }
+
+
 def load_config(document, figure="figure"):
     """Writes `document` (a dict, or raw text or bytes) as <tmp>/paper/<figure>.json and loads it."""
     directory = Path(tempfile.mkdtemp()) / "paper"

@@ -12,7 +12,7 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-from fixtures import load_config, summary_entry, valid
+from fixtures import load_config, summary_entry, tiny_matched, valid
 from harness import experiment, jobs, paths, references, stats, tables, thresholds
 from harness.errors import HarnessFailure
 from harness.records import (MatchedBudget, OriginalBudget, Run, RunRecord, TechniqueBudget,
@@ -246,10 +246,7 @@ def csv_rows(doc):
 @unittest.skipUnless(paths.renderer_binary().exists() and paths.metrics_binary().exists(),
                      "needs the renderer and metrics binaries (make build)")
 class MatchedRunTest(unittest.TestCase):
-    """A few seconds: 32×32 pixels, 2 and 8 spp, 5 seeds; `path_mis` is marked fixed-spp and
-    matched at 8 spp. No seconds budget: on a fast machine its renders could get so many
-    samples that the reference's noise check would refuse them; matched times scale with the
-    machine."""
+    """fixtures.tiny_matched() end to end, in a few seconds."""
 
     @classmethod
     def setUpClass(cls):
@@ -261,21 +258,7 @@ class MatchedRunTest(unittest.TestCase):
                             ("MANIFEST", root / "reference" / "manifest.json")):
             cls.addClassCleanup(setattr, paths, name, getattr(paths, name))
             setattr(paths, name, value)
-        doc = {
-            "description": "Matched equal time, end to end.",
-            "scene": "configs/scenes/cornell_spheres.json",
-            "set": {"/render/sampler": "independent"},
-            "techniques": {"path": {"integrator": {"type": "path"}},
-                           "path_mis": {"integrator": {"type": "path_mis"}, "fixed_spp": True}},
-            "baseline": "path",
-            "metrics": ["sigma_over_mu", "p_eff"],
-            "reference": {"integrator": {"type": "path_mis"}},
-            "profiles": {name: {"resolution": [32, 32], "spp": [2, 8], "seconds": [],
-                                "matched_spp": [8], "seeds": 5, "reference_spp": 1024,
-                                "table": {"spp": 8, "seconds": "matched"}}
-                         for name in ("quick", "full")},
-        }
-        cls.exp = load_config(doc)
+        cls.exp = load_config(tiny_matched())
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
             references.ensure([cls.exp], "quick")
             out = experiment.run(cls.exp, "quick", jobs.default_jobs())
