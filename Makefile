@@ -67,7 +67,7 @@ build: configure
 # results JSON, tables, plots), then the paths of what it wrote.
 run: build
 ifeq ($(ENGINE),harness)
-	BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile quick reproduce
+	BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile quick reproduce $(ONLY_CONFIGS)
 else
 	$(HARNESS) validate $(ONLY_CONFIGS)
 	$(SNAKEMAKE) all $(call SNAKEMAKE_CONFIG,quick)

@@ -61,7 +61,8 @@ def relative(path: str | Path) -> str:
     output in a scratch tree (OUTPUT_ROOT), relative to that, so that the records read the same
     wherever they were written. Read them back with output()."""
     resolved = Path(path).resolve()
-    for root in (OUTPUT_ROOT, ROOT):  # the scratch tree first: it may lie in the repository
+    # The deeper root first: either may lie inside the other.
+    for root in sorted((OUTPUT_ROOT, ROOT), key=lambda r: len(r.parts), reverse=True):
         if resolved.is_relative_to(root):
             return str(resolved.relative_to(root))
     return str(path)

@@ -127,12 +127,19 @@ def assemble(exp: Experiment, profile: Profile) -> Path:
     return out
 
 
+def halves_dir(exp: Experiment, profile: Profile) -> Path:
+    """Where the workflow renders an experiment's reference halves: a directory of its own (the
+    harness's engine names its by the key, for experiments of one key to share). Shared, a
+    half made again for one experiment would make the workflow redo another's renders."""
+    return paths.REFERENCE / ".halves" / profile.name / exp.id
+
+
 def render_reference_half(exp: Experiment, profile: Profile, index: int, threads: int,
                           if_needed: bool = False) -> None:
-    """One half of the reference, in the directory of its key, for reference_merge. With
-    `if_needed`, a half that reference_merge will not read (needs_halves) is left as empty
-    files instead: a workflow's merge always has both halves as its inputs."""
-    scratch = references.halves_dir(exp, profile)
+    """One half of the reference, for reference_merge. With `if_needed`, a half that
+    reference_merge will not read (needs_halves) is left as empty files instead: a
+    workflow's merge always has both halves as its inputs."""
+    scratch = halves_dir(exp, profile)
     if if_needed and not needs_halves(exp, profile):
         scratch.mkdir(parents=True, exist_ok=True)
         for ext in ("exr", "json"):
@@ -159,7 +166,7 @@ def reference_merge(exp: Experiment, profile: Profile, stamp: Path) -> str:
     elif references.copy_same_key(exp, profile):
         outcome = "copied"
     else:
-        scratch = references.halves_dir(exp, profile)
+        scratch = halves_dir(exp, profile)
         halves = [{"seed": seed, **json.loads((scratch / f"half{i}.json").read_text()),
                    "resumed": False} for i, seed in enumerate(references.half_seeds())]
         references.merge_halves(exp, profile, scratch, halves,

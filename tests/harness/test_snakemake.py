@@ -70,6 +70,9 @@ class SnakemakeEngineTest(unittest.TestCase):
         cls.addClassCleanup(scratch.cleanup)
         cls.root = Path(scratch.name)
         cls.exp = load_config(tiny_matched(), figure="tiny")
+        # The same experiment again: its reference has the same key, so the workflow renders
+        # the halves once for both.
+        cls.twin = load_config(tiny_matched(), figure="twin")
         cls.harness_root, cls.snakemake_root = cls.root / "harness", cls.root / "snakemake"
         for subcommand in ("references", "run"):
             run([sys.executable, RUN_PY, subcommand, cls.exp.file], cls.harness_root)
@@ -77,7 +80,7 @@ class SnakemakeEngineTest(unittest.TestCase):
         engine = ["--profile", Path(profile).resolve()] if profile else ["--cores", "2"]
         cls.snakemake = [shutil.which("snakemake"), "results", "-s", SNAKEFILE, "--directory",
                          cls.snakemake_root, *engine, "--config", "profile=quick",
-                         f"configs={cls.exp.file}"]
+                         f"configs={cls.exp.file} {cls.twin.file}"]
         cls.snakemake_root.mkdir()
         run(cls.snakemake, cls.snakemake_root)
         cls.documents = [json.loads((root / "results" / cls.exp.paper_name / "tiny.json")
@@ -102,10 +105,24 @@ class SnakemakeEngineTest(unittest.TestCase):
         self.assertEqual(document["provenance"]["engine"], "snakemake")
 
     def test_the_references_have_the_same_pixels(self):
-        files = [root / "reference" / self.exp.paper_name / "tiny.quick.exr"
-                 for root in (self.harness_root, self.snakemake_root)]
+        self.assertSamePixels(self.harness_root / "reference" / self.exp.paper_name / "tiny.quick.exr",
+                              self.snakemake_root / "reference" / self.exp.paper_name / "tiny.quick.exr")
+
+    def test_an_experiment_of_the_same_key_shares_the_halves_and_renders_the_same(self):
+        references = self.snakemake_root / "reference"
+        manifest = json.loads((references / "manifest.json").read_text())
+        tiny, twin = (manifest[f"{e.id}/quick"] for e in (self.exp, self.twin))
+        self.assertEqual(tiny["key"], twin["key"])
+        self.assertSamePixels(references / tiny["file"], references / twin["file"])
+        document = json.loads((self.snakemake_root / "results" / self.twin.paper_name /
+                               "twin.json").read_text())
+        records = [[{k: v for k, v in r.items() if k != "file"} for r in comparable(d)["runs"]]
+                   for d in (self.documents[1], document)]
+        self.assertEqual(records[0], records[1])
+
+    def assertSamePixels(self, a, b):
         answer = json.loads(subprocess.run(
-            [str(paths.metrics_binary()), "compare", *map(str, files), "--json"],
+            [str(paths.metrics_binary()), "compare", str(a), str(b), "--json"],
             capture_output=True, text=True, check=True).stdout)
         self.assertEqual(answer["rmse"], 0.0)
 
