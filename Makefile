@@ -27,8 +27,10 @@ $(error ENGINE=$(ENGINE): expected harness, snakemake or slurm)
 endif
 SNAKEMAKE   = BUILD=$(BUILD) snakemake -s experiments/Snakefile \
               $(if $(filter slurm,$(ENGINE)),--profile experiments/profiles/slurm,--cores $(JOBS) --rerun-incomplete)
-# The workflow's --config: the profile and, with ONLY, the configs.
-SNAKEMAKE_CONFIG = --config profile=$(1) $(if $(ONLY),configs="$(ONLY_CONFIGS)")
+# $(call workflow,TARGET,PROFILE): the configs validated, then the workflow's TARGET (all, or
+# results alone) for the profile and, with ONLY, those configs.
+workflow = $(HARNESS) validate $(ONLY_CONFIGS) && \
+           $(SNAKEMAKE) $(1) --config profile=$(2) $(if $(ONLY),configs="$(ONLY_CONFIGS)")
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
@@ -69,8 +71,7 @@ run: build
 ifeq ($(ENGINE),harness)
 	BUILD=$(BUILD) $(PYTHON) experiments/run.py --profile quick reproduce $(ONLY_CONFIGS)
 else
-	$(HARNESS) validate $(ONLY_CONFIGS)
-	$(SNAKEMAKE) all $(call SNAKEMAKE_CONFIG,quick)
+	$(call workflow,all,quick)
 endif
 
 # Renders one scene (EXR + PNG preview under results/): make render SCENE=configs/scenes/x.json
@@ -86,8 +87,7 @@ experiments: build
 ifeq ($(ENGINE),harness)
 	$(HARNESS) run $(ONLY_CONFIGS)
 else
-	$(HARNESS) validate $(ONLY_CONFIGS)
-	$(SNAKEMAKE) results $(call SNAKEMAKE_CONFIG,$(PROFILE))
+	$(call workflow,results,$(PROFILE))
 endif
 
 tables: deps
@@ -101,8 +101,7 @@ reproduce: build
 ifeq ($(ENGINE),harness)
 	$(HARNESS) reproduce $(ONLY_CONFIGS)
 else
-	$(HARNESS) validate $(ONLY_CONFIGS)
-	$(SNAKEMAKE) all $(call SNAKEMAKE_CONFIG,$(PROFILE))
+	$(call workflow,all,$(PROFILE))
 endif
 
 # Small renders of every scene (results/previews/<scene>.png, git-ignored) and a labelled

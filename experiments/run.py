@@ -33,7 +33,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from harness import (config, experiment, jobs, paths, references,  # noqa: E402
-                     renders, thresholds)
+                     renders, thresholds, workflow)
 from harness.config import Experiment  # noqa: E402
 from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
@@ -163,41 +163,37 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_render_one(args: argparse.Namespace) -> int:
-    from harness import workflow
+def workflow_unit(args: argparse.Namespace) -> tuple[Experiment, config.Profile]:
+    """The experiment and profile a workflow job's subcommand works on."""
     exp = config.load(args.config)
-    workflow.render_one(exp, exp.profiles[args.profile], args.run)
+    return exp, exp.profiles[args.profile]
+
+
+def cmd_render_one(args: argparse.Namespace) -> int:
+    workflow.render_one(*workflow_unit(args), args.run)
     return 0
 
 
 def cmd_matched(args: argparse.Namespace) -> int:
-    from harness import workflow
-    exp = config.load(args.config)
-    workflow.write_matched(exp, exp.profiles[args.profile])
+    workflow.write_matched(*workflow_unit(args))
     return 0
 
 
 def cmd_assemble(args: argparse.Namespace) -> int:
-    from harness import workflow
-    exp = config.load(args.config)
-    out = workflow.assemble(exp, exp.profiles[args.profile])
-    print(f"[{exp.id}] wrote {paths.relative(out)}", flush=True)
+    exp, profile = workflow_unit(args)
+    print(f"[{exp.id}] wrote {paths.relative(workflow.assemble(exp, profile))}", flush=True)
     return 0
 
 
 def cmd_reference_half(args: argparse.Namespace) -> int:
-    from harness import workflow
-    exp = config.load(args.config)
-    workflow.render_reference_half(exp, exp.profiles[args.profile], args.half, args.threads,
-                                   args.if_needed)
+    workflow.render_reference_half(*workflow_unit(args), args.half, args.threads, args.if_needed)
     return 0
 
 
 def cmd_reference_merge(args: argparse.Namespace) -> int:
-    from harness import workflow
-    exp = config.load(args.config)
-    outcome = workflow.reference_merge(exp, exp.profiles[args.profile], args.stamp)
-    print(f"[references] {exp.id}/{args.profile}: {outcome}", flush=True)
+    exp, profile = workflow_unit(args)
+    outcome = workflow.reference_merge(exp, profile, args.stamp)
+    print(f"[references] {exp.id}/{profile.name}: {outcome}", flush=True)
     return 0
 
 
