@@ -43,7 +43,8 @@ PACKAGES := g++ make cmake git pkg-config ca-certificates \
 FUZZ_PACKAGES := clang-14 libclang-rt-14-dev llvm-14
 CLUSTER_PACKAGES := slurm-wlm munge
 
-.PHONY: deps configure build run render test asan fuzz stress bench rr-study assets references experiments \
+.PHONY: deps configure build run render test asan fuzz stress bench embree-floor rr-study assets \
+        references experiments \
         tables plots reproduce previews fresh-check cluster-test format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
@@ -154,6 +155,19 @@ fresh-check:
 bench: build
 	$(PYTHON) experiments/bench.py $(BUILD)
 	$(BUILD)/bin/two_stage_bench
+
+# The bench dragon's loop against Embree alone on the very rays it traced, and against
+# everything but Embree alone: results/tables/embree_floor.{md,json}. Builds a renderer with
+# experiments/patches/embree_replay.patch in a worktree under $(BUILD) (about 6 minutes).
+REPLAY_TREE := $(BUILD)/embree-replay
+embree-floor: build
+	git worktree remove --force $(REPLAY_TREE)/src 2>/dev/null || rm -rf $(REPLAY_TREE)/src
+	git worktree add --detach $(REPLAY_TREE)/src HEAD
+	git -C $(REPLAY_TREE)/src apply $(CURDIR)/experiments/patches/embree_replay.patch
+	cmake -S $(REPLAY_TREE)/src -B $(REPLAY_TREE)/build -DCMAKE_BUILD_TYPE=Release >/dev/null
+	cmake --build $(REPLAY_TREE)/build -j$(JOBS) --target renderer
+	$(PYTHON) experiments/embree_floor.py --patched $(REPLAY_TREE)/build/bin/renderer
+	git worktree remove --force $(REPLAY_TREE)/src
 
 # Russian roulette rules against today's by measured efficiency on every path-traced scene:
 # results/tables/rr_efficiency.{md,json} (about 10 minutes on a quiet 2-core machine).

@@ -28,7 +28,6 @@ The table also gives the ratio measured inside the profile's experiment runs
 Writes results/tables/<name><suffix>.json and .md (name: tais_cost)."""
 import argparse
 import json
-import os
 import statistics
 import subprocess
 import sys
@@ -50,22 +49,13 @@ def tais_technique(figure: str) -> str:
     return "tais_16" if figure == "fig04_map_size" else "tais"
 
 
-def asset_environment() -> dict[str, str]:
-    """The environment with this checkout's asset folders first on RENDERER_ASSETS: a binary
-    built from another checkout searches beside that one."""
-    ours = [paths.ROOT / "assets", paths.ROOT.parent / "shared" / "assets"]
-    given = os.environ.get("RENDERER_ASSETS")
-    return {**os.environ,
-            "RENDERER_ASSETS": ":".join([*map(str, ours), *([given] if given else [])])}
-
-
 def render_time(binary: Path, scene_args: list[object], spp: int, seed: int,
                 out: Path) -> float:
     """Seconds of one render's render loop, from its EXR."""
     args = [binary, "render", *scene_args, "--seed", seed, "--threads", 1, "--spp", spp,
             "--no-preview", "--out", out]
     proc = subprocess.run([str(a) for a in args], capture_output=True, text=True,
-                          env=asset_environment())
+                          env=paths.asset_environment())
     if proc.returncode != 0:
         raise RuntimeError(f"{binary} failed on {out.name}: {proc.stderr.strip()}")
     values, _ = read_render(out)

@@ -36,6 +36,15 @@ def metrics_binary() -> Path:
     return Path(os.environ.get("METRICS_BINARY", build_dir() / "bin" / "metrics"))
 
 
+def asset_environment() -> dict[str, str]:
+    """The environment with this checkout's asset folders first on RENDERER_ASSETS: a binary
+    built from another checkout (an older or a patched one) searches beside that one."""
+    ours = [ROOT / "assets", ROOT.parent / "shared" / "assets"]
+    given = os.environ.get("RENDERER_ASSETS")
+    return {**os.environ,
+            "RENDERER_ASSETS": ":".join([*map(str, ours), *([given] if given else [])])}
+
+
 def experiment_id(config_path: str | Path) -> str:
     """configs/experiments/<paper>/<figure>.json -> "<paper>/<figure>"."""
     p = Path(config_path).resolve()
