@@ -46,7 +46,8 @@ Totals pass(const LoadedScene& loaded, const TwoStageEstimator& estimator, uint3
     std::vector<Vec3> directions(n);
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
-            StandardSampling standard(scene, sampler.at(uint32_t(y * kSize + x), 0));
+            const PixelSample sample = sampler.at(uint32_t(y * kSize + x), 0);
+            StandardSampling standard(scene, sample);
             RayCounters rays;
             estimateAtFirstHit(scene, standard, x, y, rays, [&](ShadingPoint& point) {
                 const auto a = Clock::now();
