@@ -36,13 +36,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from harness import paths, provenance  # noqa: E402
-from render_stats import read_render  # noqa: E402
+from render_stats import GUIDE_RAW_EMBREE, guide_seconds, read_render  # noqa: E402
 
 SCENE = paths.SCENES / "dragon_bench.json"
 THREADS = 2
 GOAL = 0.75
-# The developers' guide's raw Embree figures for this machine kind (Mrays/s, 2 threads).
-GUIDE = {"camera": 35.0, "extension": 16.0, "shadow": 18.0}
 # (label, environment of the patched binary)
 REPLAYS = [
     ("the renderer's Embree set-up (bvh8.triangle4, high quality)", {}),
@@ -66,10 +64,6 @@ def render(binary: Path, out: Path, env: dict[str, str],
     if proc.returncode != 0:
         raise SystemExit(f"{binary} failed: {proc.stderr.strip()}")
     return read_render(out)[0], proc.stderr
-
-
-def guide_seconds(meta: dict[str, float]) -> float:
-    return sum(meta[f"renderer.rays.{kind}"] / rate for kind, rate in GUIDE.items()) * 1e-6
 
 
 def replay_seconds(binary: Path, stderr: str) -> tuple[int, float]:
@@ -100,7 +94,7 @@ def one_thread(patched: Path, scratch: Path) -> dict[str, float]:
 
 def measure(patched: Path, scratch: Path) -> dict:
     loop, meta = loop_seconds(scratch, THREADS, 5)
-    rays = {kind: meta[f"renderer.rays.{kind}"] for kind in GUIDE}
+    rays = {kind: meta[f"renderer.rays.{kind}"] for kind in GUIDE_RAW_EMBREE}
     replays = []
     for label, env in REPLAYS:
         _, stderr = render(patched, scratch / "replay.exr", {"RECORD_RAYS": "1", **env})

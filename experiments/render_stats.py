@@ -8,6 +8,17 @@ import numpy as np
 from harness.exr import read_exr
 
 
+# The developers' guide's raw Embree figures for this machine kind (rtcIntersect1, 2 threads,
+# the 202k-triangle dragon), in Mrays/s per kind of ray: issue 19's yardstick (goal ≥ 75 %).
+GUIDE_RAW_EMBREE = {"camera": 35.0, "extension": 16.0, "shadow": 18.0}
+
+
+def guide_seconds(values: dict[str, float]) -> float:
+    """The seconds raw Embree at the guide's figures would take for a render's rays."""
+    return sum(values[f"renderer.rays.{kind}"] / rate
+               for kind, rate in GUIDE_RAW_EMBREE.items()) * 1e-6
+
+
 def read_render(exr: Path) -> tuple[dict[str, float], float]:
     """The render's numeric renderer.* metadata plus "samples" (spp × pixels), and the mean over
     pixels and channels of the variance of the pixel mean."""
