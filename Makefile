@@ -161,12 +161,15 @@ bench: build
 # experiments/patches/embree_replay.patch in a worktree under $(BUILD) (about 6 minutes).
 REPLAY_TREE := $(BUILD)/embree-replay
 embree-floor: build
+	$(BUILD)/bin/renderer check configs/scenes/dragon_bench.json >/dev/null
+	@git diff --quiet HEAD -- renderer || echo "warning: renderer/ differs from HEAD, which the \
+	patched renderer is built from; the loop and the replays would measure different code"
 	git worktree remove --force $(REPLAY_TREE)/src 2>/dev/null || rm -rf $(REPLAY_TREE)/src
 	git worktree add --detach $(REPLAY_TREE)/src HEAD
 	git -C $(REPLAY_TREE)/src apply $(CURDIR)/experiments/patches/embree_replay.patch
 	cmake -S $(REPLAY_TREE)/src -B $(REPLAY_TREE)/build -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build $(REPLAY_TREE)/build -j$(JOBS) --target renderer
-	$(PYTHON) experiments/embree_floor.py --patched $(REPLAY_TREE)/build/bin/renderer
+	BUILD=$(BUILD) $(PYTHON) experiments/embree_floor.py --patched $(REPLAY_TREE)/build/bin/renderer
 	git worktree remove --force $(REPLAY_TREE)/src
 
 # Russian roulette rules against today's by measured efficiency on every path-traced scene:

@@ -23,7 +23,7 @@ class StandardSampling {
     StandardSampling(const Scene& scene, const PixelSample& sample)
         : scene_(scene), sample_(sample) {}
     // The guide keeps a reference to the sample: a temporary would dangle.
-    StandardSampling(const Scene& scene, PixelSample&& sample) = delete;
+    StandardSampling(const Scene& scene, const PixelSample&& sample) = delete;
 
     // The camera ray through pixel (x, y) and its sampling weight (1 unless the guide warps
     // the camera's decisions).

@@ -41,6 +41,9 @@ class MapGuide : public StandardSampling {
           maps_(maps),
           settings_(settings),
           invertible_(invertible) {}
+    // The guide keeps a reference to the sample: a temporary would dangle.
+    MapGuide(const Scene& scene, const PixelSample&& sample, const PixelMaps& maps,
+             const TaisSettings& settings, std::span<const char> invertible) = delete;
 
     // The camera ray through pixel (x, y), its time and lens coordinates warped by their maps;
     // *weight = 1 / (p_time · p_lens).
