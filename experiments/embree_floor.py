@@ -9,9 +9,10 @@ must take at most T / 0.75. This script measures
  - Embree alone on the rays that render traced, per thread and in the order traced, with
    nothing else running: a binary built with experiments/patches/embree_replay.patch records
    every ray (RECORD_RAYS=1) and replays them after the render (median of 3 replays). The
-   same binary replays them under other Embree accelerations (RTC_CONFIG) and regrouped as a
-   wavefront renderer would trace them (REPLAY_BATCH: all rays of one path depth of a batch
-   of paths together);
+   same binary replays them under other Embree accelerations (RTC_CONFIG; each records its
+   own render's rays) and regrouped by path depth, as a wavefront renderer would order them
+   without its sorting or packets (REPLAY_BATCH: all rays of one depth of a batch of
+   consecutive paths together);
  - on one thread, the loop split in three: Embree alone on its rays (the replay); everything
    but Embree alone: the same binary (PLAYBACK_HITS=1, which also fixes the pass sizes)
    records Embree's answers and renders the same samples again taking them from the record,
