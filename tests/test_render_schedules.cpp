@@ -87,8 +87,12 @@ bool allocateByNoise(const Film& film, int iteration, std::vector<uint32_t>* cou
 
 Film renderAllocated(const LoadedScene& scene, int threads, RenderStats* stats) {
     const auto& integrator = dynamic_cast<const SampleIntegrator&>(*scene.integrator);
-    IteratedAllocation schedule(*scene.scene, integrator, scene.render.width, scene.render.height,
-                                0, allocateByNoise);
+    IteratedAllocation schedule(
+        *scene.scene, integrator, scene.render.width, scene.render.height, 0,
+        [](const Film& film, int iteration, IteratedAllocation::Plan* plan) {
+            plan->counts.resize(size_t(film.width()) * film.height());
+            return allocateByNoise(film, iteration, &plan->counts);
+        });
     Film film(scene.render.width, scene.render.height);
     RenderOptions options;
     options.threads = threads;
@@ -131,8 +135,7 @@ TEST(RenderLoop, CancelledBandsLeaveTheImageIncomplete) {
     const LoadedScene scene = loadSceneFile(
         "cornell_spheres.json",
         {"/render/resolution=[16,16]", R"(/integrator={"type":"tais","band_rows":1})"});
-    const std::unique_ptr<RenderSchedule> schedule =
-        scene.schedule(ScheduleInputs{*scene.scene, 16, 16, 1, 0});
+    const std::unique_ptr<RenderSchedule> schedule = scene.schedule(scene.scheduleInputs(1, 0));
     std::atomic<bool> cancel{true};
     RenderOptions options;
     options.cancel = &cancel;

@@ -20,17 +20,18 @@ namespace rr::test {
 namespace {
 
 // Every χ² run in this file: 5 per sampler type (every-index 1-D and 2-D, fixed-index 1-D and
-// 2-D, repeats) × 3 types, and 2 negative controls.
-constexpr int kRuns = 17;
+// 2-D, repeats) × 4 types, and 2 negative controls.
+constexpr int kRuns = 22;
 const Chi2Family kChi2(kRuns);
 const double kAlpha = kChi2.alpha();
-// Every correlation z-test in this file: 5 pairs × 3 types, and 1 negative control.
-constexpr int kZTests = 16;
+// Every correlation z-test in this file: 5 pairs × 4 types, and 1 negative control.
+constexpr int kZTests = 21;
 const double kZ = zThreshold(sidakAlpha(0.01, kZTests));
 
 constexpr SamplerType kAllTypes[] = {SamplerType::Independent, SamplerType::Stratified,
-                                     SamplerType::Hammersley};
-constexpr SamplerType kStructuredTypes[] = {SamplerType::Stratified, SamplerType::Hammersley};
+                                     SamplerType::Hammersley, SamplerType::PbrtV1};
+constexpr SamplerType kStructuredTypes[] = {SamplerType::Stratified, SamplerType::Hammersley,
+                                            SamplerType::PbrtV1};
 
 // A parameterised suite over the three sampler types, named after them.
 class EachSampler : public ::testing::TestWithParam<SamplerType> {
@@ -501,7 +502,7 @@ TEST_P(EachStructuredSampler, TwoDimensionalSetsAreStratified) {
                     }
                     const std::string where = name() + ", set size " + std::to_string(n) +
                                               ", pixel " + std::to_string(pixel);
-                    if (type() == SamplerType::Stratified) {
+                    if (type() != SamplerType::Hammersley) {
                         const int cols = int(gridColumns(n));
                         ASSERT_TRUE(oneInEachShiftedCell(ps, cols, int(n) / cols))
                             << where << ": not one point per cell of the " << cols << " x "
@@ -518,27 +519,47 @@ TEST_P(EachStructuredSampler, TwoDimensionalSetsAreStratified) {
     }
 }
 
-// With repeatCount r, the setSize·r draws of one pixel set are stratified together.
-TEST_P(EachStructuredSampler, RepeatsAreJointlyStratified) {
+// With repeatCount r, the setSize·r draws of one pixel set are stratified together; under
+// pbrt_v1, the r draws of each pixel sample are (pbrt-v1's sample arrays), and not jointly.
+TEST_P(EachStructuredSampler, RepeatsAreStratified) {
     struct Case {
         uint32_t setSize, repeats;
     };
-    for (const Case c : {Case{1, 4}, Case{4, 2}, Case{4, 4}, Case{16, 4}, Case{6, 3}, Case{5, 7}}) {
+    const bool perSample = type() == SamplerType::PbrtV1;
+    int jointlyStratified = 0;  // pbrt_v1: sets whose draws happen to be jointly stratified
+    for (const Case c :
+         {Case{1, 4}, Case{4, 2}, Case{4, 4}, Case{16, 4}, Case{6, 3}, Case{5, 7}, Case{4, 9}}) {
         const Sampler s(type(), 23, c.setSize);
         const uint32_t n = c.setSize * c.repeats;
         for (uint32_t pixel = 0; pixel < 100; ++pixel) {
             std::vector<float> xs;
             std::vector<Vec2> ps;
-            for (uint32_t i = 0; i < c.setSize; ++i)
+            for (uint32_t i = 0; i < c.setSize; ++i) {
+                std::vector<float> sampleXs;
+                std::vector<Vec2> samplePs;
                 for (uint32_t r = 0; r < c.repeats; ++r) {
                     const PixelSample sample = s.at(pixel, c.setSize + i);  // the second set
-                    xs.push_back(
+                    sampleXs.push_back(
                         sample.get1D(DecisionSite{Decision::LightSelect, 1, r, c.repeats}));
-                    ps.push_back(sample.get2D(DecisionSite{Decision::LightPoint, 1, r, c.repeats}));
+                    samplePs.push_back(
+                        sample.get2D(DecisionSite{Decision::LightPoint, 1, r, c.repeats}));
                 }
+                if (perSample) {
+                    const int cols = int(gridColumns(c.repeats));
+                    ASSERT_TRUE(oneInEachShiftedStratum(sampleXs)) << "pixel " << pixel;
+                    ASSERT_TRUE(oneInEachShiftedCell(samplePs, cols, int(c.repeats) / cols))
+                        << "pixel " << pixel << ", sample " << i << ", " << c.repeats << " repeats";
+                }
+                xs.insert(xs.end(), sampleXs.begin(), sampleXs.end());
+                ps.insert(ps.end(), samplePs.begin(), samplePs.end());
+            }
             const std::string where = name() + ", " + std::to_string(c.setSize) + " samples x " +
                                       std::to_string(c.repeats) + " repeats, pixel " +
                                       std::to_string(pixel);
+            if (perSample) {
+                jointlyStratified += c.setSize > 1 && oneInEachShiftedStratum(xs);
+                continue;
+            }
             ASSERT_TRUE(oneInEachShiftedStratum(xs)) << where << " (1-D)";
             if (type() == SamplerType::Stratified) {
                 const int cols = int(gridColumns(n));
@@ -548,6 +569,12 @@ TEST_P(EachStructuredSampler, RepeatsAreJointlyStratified) {
                 ASSERT_TRUE(defect.empty()) << where << " (2-D): " << defect;
             }
         }
+    }
+    // pbrt_v1's sets of different samples are independent: jointly stratified only by chance.
+    if (perSample) {
+        std::printf("pbrt_v1: %d of 600 sets of several samples jointly stratified\n",
+                    jointlyStratified);
+        EXPECT_LT(jointlyStratified, 60);
     }
 }
 

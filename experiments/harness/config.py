@@ -5,7 +5,11 @@ jsonschema. This module checks what a schema cannot say: values that must agree 
 fields (a baseline among the techniques, budgets among a profile's, a crop inside the image),
 budgets in strictly increasing order, and a scene file that exists. Every error is one
 ConfigError naming the JSON pointer of the bad value. The format is documented in
-configs/README.md ("Experiments")."""
+configs/README.md ("Experiments").
+
+A variant ("variant_of": another experiment's file) is merged onto its parent first (_merged)
+and the result checked as any experiment: many figures are also rendered through another film
+with a few of their techniques, and full copies would drift from their parents."""
 import copy
 import functools
 import hashlib
@@ -44,6 +48,9 @@ PROFILES = ("quick", "full")
 # measured render time for the table's spp.
 MATCHED = "matched"
 SCHEMA_FILE = paths.SCHEMAS / "experiment.schema.json"
+# The keys a variant inherits from its parent unless it gives them, then replaced whole.
+VARIANT_REPLACES = ("scene", "metrics", "reference", "profiles", "relmse_reject",
+                    "slope_time_range")
 
 # An integrator object as the scene has it; the renderer checks its keys.
 Integrator = dict[str, Any]
@@ -134,6 +141,13 @@ class Experiment:
     thresholds: Thresholds | None = None
     # "common": slopes are fitted over the runs in the time range every technique covers
     slope_time_range: str = "all"
+    variant_of: Path | None = None  # a variant's parent config, which it is merged onto
+
+    @property
+    def files(self) -> list[Path]:
+        """The config files the experiment is read from: its own and a variant's parent's.
+        Editing either changes the experiment, so a job that depends on one depends on both."""
+        return [self.file, *([self.variant_of] if self.variant_of else [])]
 
     @property
     def paper_name(self) -> str:
@@ -149,21 +163,118 @@ class Experiment:
 
 
 def load(file: str | Path) -> Experiment:
-    """Loads and validates one experiment config. Raises ConfigError."""
+    """Loads and validates one experiment config, or a variant merged onto its parent. Raises
+    ConfigError."""
     file = Path(file)
     doc = _parse(file)
-    error = best_match(_validator().iter_errors(doc))
-    if error is not None:
-        raise _schema_error(file, error)
-    disagreement = next(_disagreements(doc), None)
-    if disagreement is not None:
-        raise ConfigError(file, *disagreement)
-    return _experiment(file, doc)
+    _check_structure(file, doc)
+    if "variant_of" not in doc:
+        _check_agreement(file, doc)
+        return _experiment(file, doc)
+    parent_file, parent = _parent(file, doc)
+    merged = _merged(file, doc, parent)
+    try:
+        _check_structure(file, merged)
+        _check_agreement(file, merged)
+    except ConfigError as e:
+        raise _variant_error(e, doc) from None
+    return _experiment(file, merged, parent_file)
 
 
 def json_pointer(*keys: str | int) -> str:
     """RFC 6901: "/" before each key, and "~" and "/" inside keys escaped."""
     return "".join("/" + str(k).replace("~", "~0").replace("/", "~1") for k in keys)
+
+
+def _check_structure(file: Path, doc: Any) -> None:
+    """The schema: an experiment's structure, or a variant's own (before merging)."""
+    error = best_match(_validator().iter_errors(doc))
+    if error is not None:
+        raise _schema_error(file, error)
+
+
+def _check_agreement(file: Path, doc: dict[str, Any]) -> None:
+    """What the schema cannot check (_disagreements) of a structurally valid experiment."""
+    disagreement = next(_disagreements(doc), None)
+    if disagreement is not None:
+        raise ConfigError(file, *disagreement)
+
+
+def _parent(file: Path, variant: dict[str, Any]) -> tuple[Path, dict[str, Any]]:
+    """The file and document of the experiment a variant varies, checked as an experiment of
+    its own first, so that an error in it names its file and its pointer. No chains: the
+    merged result of a variant's variant would hang on two files the reader must combine."""
+    name = variant["variant_of"]
+    parent_file = (paths.ROOT / name).resolve()
+    if not parent_file.is_file():
+        raise ConfigError(file, "/variant_of", f"experiment config not found: {name} (paths "
+                                               "are relative to the repository root)")
+    parent = _parse(parent_file)
+    if isinstance(parent, dict) and "variant_of" in parent:
+        raise ConfigError(file, "/variant_of",
+                          f"{name} is itself a variant (of {_abbreviated(parent['variant_of'])}"
+                          "): name a whole experiment")
+    _check_structure(parent_file, parent)
+    _check_agreement(parent_file, parent)
+    return parent_file, parent
+
+
+def _merged(file: Path, variant: dict[str, Any], parent: dict[str, Any]) -> dict[str, Any]:
+    """The experiment document a variant stands for: the parent's techniques it keeps (in its
+    order) and its extra ones; the parent's `set` and then its own (a pointer both set takes
+    its value, at its place, as if applied after the parent's); its baselines, or the
+    parent's if kept; the parent's paper numbers of the kept techniques; its thresholds only
+    (the parent's are limits of other renders); of VARIANT_REPLACES, its value or else the
+    parent's. Raises ConfigError for a name the parent lacks or that clashes, or no baseline."""
+    kept = variant["techniques"]
+    for i, name in enumerate(kept):
+        if name not in parent["techniques"]:
+            raise ConfigError(file, json_pointer("techniques", i),
+                              f"not one of {variant['variant_of']}'s techniques (known: "
+                              f"{', '.join(parent['techniques'])})")
+    extra = variant.get("extra_techniques", {})
+    for name in extra:
+        if name in kept:
+            raise ConfigError(file, json_pointer("extra_techniques", name),
+                              "the name of a kept technique")
+    baseline = variant.get("baseline", parent["baseline"] if parent["baseline"] in kept else None)
+    if baseline is None:
+        raise ConfigError(file, "/baseline", f"required: the parent's baseline, "
+                                             f"{parent['baseline']}, is not kept")
+    merged = {key: variant.get(key, parent.get(key)) for key in VARIANT_REPLACES
+              if key in variant or key in parent}
+    merged.update(description=variant["description"], baseline=baseline,
+                  techniques={**{name: parent["techniques"][name] for name in kept}, **extra})
+    if "set" in parent or "set" in variant:
+        ours = variant.get("set", {})
+        merged["set"] = {**{pointer: value for pointer, value in parent.get("set", {}).items()
+                            if pointer not in ours}, **ours}
+    if "also_baseline" in variant:
+        merged["also_baseline"] = variant["also_baseline"]
+    elif parent.get("also_baseline") in kept and parent["also_baseline"] != baseline:
+        merged["also_baseline"] = parent["also_baseline"]
+    paper = [{**entry, "values": {t: v for t, v in entry["values"].items() if t in kept}}
+             for _, entry in _paper_entries(parent)]
+    paper = [entry for entry in paper if entry["values"]]
+    if paper:
+        merged["paper"] = paper if isinstance(parent["paper"], list) else paper[0]
+    if "thresholds" in variant:
+        merged["thresholds"] = variant["thresholds"]
+    return merged
+
+
+def _variant_error(error: ConfigError, variant: dict[str, Any]) -> ConfigError:
+    """An error of a variant's merged document, said where the variant's author can act on
+    it: an extra technique's at its pointer under extra_techniques, and one in a key the
+    variant inherits (the paper's numbers against its own metrics or budgets, the parent's
+    matched_spp without a fixed-spp technique kept) naming the parent."""
+    key, _, rest = error.pointer[1:].partition("/")
+    if key == "techniques" and rest.split("/")[0] in variant.get("extra_techniques", {}):
+        return ConfigError(error.file, "/extra_techniques/" + rest, error.message)
+    if key and key not in variant:
+        return ConfigError(error.file, error.pointer,
+                           f"{error.message} (/{key} is inherited from {variant['variant_of']})")
+    return error
 
 
 def _parse(file: Path) -> Any:
@@ -366,8 +477,10 @@ def _threshold_disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
             yield at("min_gain"), "the baseline has no gain over itself"
 
 
-def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
-    """The Experiment of a document that passed every check."""
+def _experiment(file: Path, doc: dict[str, Any], variant_of: Path | None = None) -> Experiment:
+    """The Experiment of a document that passed every check. For a variant, `doc` is the
+    merged document, so that its hash changes with what it inherits, and `variant_of` the
+    parent's file."""
     return Experiment(
         id=paths.experiment_id(file),
         file=file,
@@ -389,6 +502,7 @@ def _experiment(file: Path, doc: dict[str, Any]) -> Experiment:
         paper=[PaperNumbers(**entry) for _, entry in _paper_entries(doc)],
         thresholds=_thresholds(doc["thresholds"]) if "thresholds" in doc else None,
         slope_time_range=doc.get("slope_time_range", "all"),
+        variant_of=variant_of,
     )
 
 

@@ -119,8 +119,7 @@ PreparedRender prepare(const RenderCommandOptions& o, SceneCache* scenes) {
         loadScene(p.document, AssetResolver::standard(fs::path(o.scene).parent_path()), scenes);
     const RenderSettings& settings = p.loaded.render;
     p.spp = o.timeLimit > 0 ? (o.spp ? *o.spp : kMaxSpp) : settings.spp;
-    p.schedule = p.loaded.schedule(ScheduleInputs{*p.loaded.scene, settings.width, settings.height,
-                                                  p.spp, o.timeLimit, settings.seed});
+    p.schedule = p.loaded.schedule(p.loaded.scheduleInputs(p.spp, o.timeLimit));
     if (o.timeLimit > 0 && !p.schedule->supportsTimeLimit())
         throw ConfigError("/integrator/type",
                           p.loaded.integrator->name() +
@@ -161,6 +160,7 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.timeLimit"] = o.timeLimit;
     a["renderer.seed"] = static_cast<double>(settings.seed);
     a["renderer.sampler"] = std::string(samplerName(settings.sampler));
+    a["renderer.filter"] = ReconstructionFilter(settings.filter).parameters().dump();
     a["renderer.threads"] = threads;
     a["renderer.renderTime"] = stats.seconds;
     a["renderer.prepareTime"] = p.loaded.prepareSeconds;
@@ -172,9 +172,10 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.nonFiniteSamples"] = static_cast<double>(stats.nonFiniteSamples);
     a["renderer.interrupted"] = stats.interrupted ? 1 : 0;
     std::string channels =
-        "R,G,B: pixel estimate of radiance; variance.R,variance.G,variance.B: variance of the "
-        "mean of the pixel's samples; "
-        "samples: samples in the pixel";
+        "R,G,B: pixel estimate of radiance; variance.R,variance.G,variance.B: variance of that "
+        "estimate (box filter: of the mean of the pixel's samples; another filter: the "
+        "linearised variance of the ratio sum(w L) / sum(w) over the samples splatted to it); "
+        "samples: the pixel's own samples";
     for (AuxiliaryChannel& channel : p.loaded.integrator->auxiliaryChannels()) {
         channels += "; " + channel.name + ": " + channel.description;
         image->channels[channel.name] = std::move(channel.values);
@@ -303,7 +304,7 @@ int runRenderCommand(const RenderCommandOptions& o, const RenderEnvironment& env
     RenderStats stats;
     double writeSeconds = 0;
     try {
-        Film film(settings.width, settings.height);
+        Film film(settings.width, settings.height, p.loaded.filmFilter());
         stats = render(*p.schedule, options, film,
                        [&](const RenderProgress& progress) { bar.update(progress); });
         if (!stats.complete) {  // interrupted before any image was complete

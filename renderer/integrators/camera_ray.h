@@ -16,6 +16,11 @@ struct CameraSample {
 
 CameraSample drawCameraSample(const Camera& camera, const PixelSample& sample);
 
+// The sample's position in its pixel, [0, 1)²: the FilmPosition decision, or the centre for a
+// camera that traces pixel centres. A splatting film (render/film.h) places the sample's value
+// by it, so no technique may warp this decision.
+Vec2 filmOffset(const Camera& camera, const PixelSample& sample);
+
 // The ray through pixel (x, y) for the coordinates `c`.
 inline Ray cameraRay(const Camera& camera, int x, int y, const CameraSample& c) {
     return camera.generateRay(

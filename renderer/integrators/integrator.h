@@ -64,8 +64,12 @@ class Integrator {
     virtual void prepare(const Scene& /*scene*/) {}
     // Channels besides radiance, once the render is done.
     virtual std::vector<AuxiliaryChannel> auxiliaryChannels() const { return {}; }
-    // Once the render is done: the pixel estimates when they are not the means of the film's
-    // samples (PMC-IP weights each iteration's samples); else empty.
+    // Whether the image is pixelEstimates(), formed from the integrator's own record of its
+    // samples (PMC-IP weights each sample by its sampling density), so that the film only
+    // counts them.
+    virtual bool formsOwnImage() const { return false; }
+    // Once the render is done: the pixel estimates when the integrator forms its own image;
+    // else empty.
     virtual PixelEstimates pixelEstimates() const { return {}; }
 };
 

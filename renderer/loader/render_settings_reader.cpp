@@ -11,6 +11,40 @@ namespace {
 
 constexpr double kMaxPixels = 67108864.0;  // 2^26
 
+// "filter": "box", "mitchell" or "gaussian" (with their default parameters), or an object
+// {"type": ..., and the type's parameters}.
+FilterSettings readFilter(ObjectReader& render) {
+    const Json* value = render.rawOptional("filter");
+    FilterSettings f;
+    if (!value) return f;
+    const std::string pointer = render.pointerTo("filter");
+    auto typeOf = [&](const std::string& name, const std::string& at) {
+        for (FilterType t : {FilterType::Box, FilterType::Mitchell, FilterType::Gaussian})
+            if (name == filterName(t)) return t;
+        throw ConfigError(at, "unknown filter type \"" + name +
+                                  "\", expected one of: \"box\", \"mitchell\", \"gaussian\"");
+    };
+    if (value->is_string()) {
+        f.type = typeOf(value->get<std::string>(), pointer);
+        return f;
+    }
+    if (!value->is_object())
+        throw ConfigError(pointer, "expected a filter name or an object with a \"type\"");
+    ObjectReader j(*value, pointer);
+    f.type = typeOf(j.getString("type"), j.pointerTo("type"));
+    if (f.type != FilterType::Box)
+        f.radius =
+            j.getNumber("radius", f.radius, Range::closed(0.5, ReconstructionFilter::kMaxRadius));
+    if (f.type == FilterType::Mitchell) {
+        f.b = j.getNumber("b", f.b, Range::closed(0, 1));
+        f.c = j.getNumber("c", f.c, Range::closed(0, 1));
+    }
+    if (f.type == FilterType::Gaussian)
+        f.alpha = j.getNumber("alpha", f.alpha, Range::closed(0.01, 100));
+    j.finish();
+    return f;
+}
+
 }  // namespace
 
 RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
@@ -30,9 +64,10 @@ RenderSettings readRenderSettings(ObjectReader& j, PathSettings* path) {
     }
     r.spp = static_cast<uint32_t>(j.getInt("spp", 16, Range::closed(1, kMaxSpp)));
     r.seed = static_cast<uint32_t>(j.getInt("seed", 0, Range::closed(0, 4294967295.0)));
-    const std::string sampler =
-        j.getChoice("sampler", {"independent", "stratified", "hammersley"}, "independent");
+    const std::string sampler = j.getChoice(
+        "sampler", {"independent", "stratified", "hammersley", "pbrt_v1"}, "independent");
     parseSamplerType(sampler, &r.sampler);
+    r.filter = readFilter(j);
     const PathSettings defaults;
     path->maxDepth =
         static_cast<int>(j.getInt("max_depth", defaults.maxDepth, Range::closed(-1, 100000)));

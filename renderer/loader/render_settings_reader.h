@@ -1,10 +1,12 @@
-// The scene's "render" object: image size, samples, seed, sampler, path length, light selection.
+// The scene's "render" object: image size, samples, seed, sampler, reconstruction filter, path
+// length, light selection.
 #pragma once
 
 #include <cstdint>
 
 #include "config/json_reader.h"
 #include "integrators/path_tracer.h"
+#include "render/reconstruction_filter.h"
 #include "sampling/sampler.h"
 #include "scene/light_selector.h"
 
@@ -15,6 +17,7 @@ struct RenderSettings {
     uint32_t spp = 16;
     uint32_t seed = 0;
     SamplerType sampler = SamplerType::Independent;
+    FilterSettings filter;  // the box unless "filter" says otherwise
     LightSelection lightSelection = LightSelection::Power;
 };
 

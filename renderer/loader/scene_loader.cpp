@@ -99,6 +99,16 @@ std::string sceneCacheKey(const Json& document, const RenderSettings& render,
 
 }  // namespace
 
+ReconstructionFilter LoadedScene::filmFilter() const {
+    return integrator->formsOwnImage() ? ReconstructionFilter()
+                                       : ReconstructionFilter(render.filter);
+}
+
+ScheduleInputs LoadedScene::scheduleInputs(uint32_t spp, double timeLimit) const {
+    return ScheduleInputs{*scene,    render.width, render.height, spp,
+                          timeLimit, render.seed,  render.filter};
+}
+
 Json estimandOf(const Json& document) {
     Json estimand = document;
     if (!estimand.is_object()) return estimand;

@@ -26,6 +26,14 @@ struct LoadedScene {
     // sampling's summed-area table), outside the timed render: reported so that comparisons
     // can charge it.
     double prepareSeconds = 0;
+
+    // The film's reconstruction filter: the scene's, or the box when the integrator forms the
+    // image from its own record of the samples (Integrator::formsOwnImage) and the film only
+    // counts them.
+    ReconstructionFilter filmFilter() const;
+    // The inputs of the integrator's schedule for this scene, at `spp` (with a time limit, an
+    // upper bound) and the scene's size and seed.
+    ScheduleInputs scheduleInputs(uint32_t spp, double timeLimit) const;
 };
 
 // With a cache, a scene built before from the same scene objects, resolution, light selection

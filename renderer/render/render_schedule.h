@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "integrators/camera_ray.h"
 #include "integrators/integrator.h"
 #include "render/film.h"
 #include "sampling/sampler.h"
@@ -35,11 +36,20 @@ struct PixelVisit {
 };
 
 // What a pixel hook produced for one visit: its sample values in sample order (cleared by the
-// loop before each visit), and what a unit's visits cost.
+// loop before each visit), and what a unit's visits cost. When the film splats samples into
+// neighbouring pixels (recordOffsets), each value comes with its position in the pixel: hooks
+// add values through add(), which records it from the sample that made the value.
 struct PixelWork {
     std::vector<Rgb> values;
+    std::vector<Vec2> offsets;  // with recordOffsets: values[i]'s position in its pixel
+    bool recordOffsets = false;
     RayCounters rays;
     uint64_t nonFiniteSamples = 0;  // replaced by zero and reported: a bug indicator
+
+    void add(const Rgb& value, const Camera& camera, const PixelSample& sample) {
+        values.push_back(value);
+        if (recordOffsets) offsets.push_back(filmOffset(camera, sample));
+    }
 };
 
 // A sample value as the film takes it: non-finite values count as zero and are counted.
@@ -97,9 +107,11 @@ class SampleLoop final : public PixelRenderer {
 
     void render(const PixelVisit& visit, PixelWork& work) override {
         const uint32_t pixel = uint32_t(visit.y) * uint32_t(width_) + uint32_t(visit.x);
-        for (uint32_t s = visit.first; s < visit.first + visit.count; ++s)
-            work.values.push_back(
-                integrator_.estimate(scene_, visit.x, visit.y, sampler_.at(pixel, s), work.rays));
+        for (uint32_t s = visit.first; s < visit.first + visit.count; ++s) {
+            const PixelSample sample = sampler_.at(pixel, s);
+            work.add(integrator_.estimate(scene_, visit.x, visit.y, sample, work.rays),
+                     scene_.camera(), sample);
+        }
     }
 
   private:

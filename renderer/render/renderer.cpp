@@ -4,8 +4,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <mutex>
+#include <stdexcept>
 
 namespace rr {
 
@@ -56,20 +59,52 @@ bool cancelled(const RenderOptions& options) {
     return options.cancel && options.cancel->load();
 }
 
-// Runs unit `unit`: its visits in order through a new hook, the kept samples into the film.
+// The pixels a unit keeps samples of, as a rectangle [x0, x1) × [y0, y1) (empty: none).
+struct KeptBounds {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+KeptBounds keptBounds(const std::vector<PixelVisit>& visits) {
+    KeptBounds b{INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN};
+    for (const PixelVisit& v : visits)
+        if (v.keep) {
+            b.x0 = std::min(b.x0, v.x);
+            b.y0 = std::min(b.y0, v.y);
+            b.x1 = std::max(b.x1, v.x + 1);
+            b.y1 = std::max(b.y1, v.y + 1);
+        }
+    return b.x1 > b.x0 ? b : KeptBounds{};
+}
+
+// Runs unit `unit`: its visits in order through a new hook, the kept samples into the film
+// (for a splatting film, into the unit's tile, which the round's end adds to the image).
 void runUnit(RenderSchedule& schedule, size_t unit, const Sampler& sampler, Film& film,
              ProgressReporter& reporter, RoundTotals& totals, std::mutex& mutex) {
     std::vector<PixelVisit> visits;
     schedule.unitVisits(unit, &visits);
     const std::unique_ptr<PixelRenderer> hook = schedule.pixelRenderer(sampler);
+    SplatTile* tile = nullptr;
+    if (film.splats()) {
+        const KeptBounds b = keptBounds(visits);
+        tile = &film.openTile(unit, b.x0, b.y0, b.x1, b.y1);
+    }
     PixelWork work;
+    work.recordOffsets = tile != nullptr;
     uint64_t kept = 0;
     for (const PixelVisit& visit : visits) {
         work.values.clear();
+        work.offsets.clear();
         hook->render(visit, work);
-        for (const Rgb& value : work.values) {
-            const Rgb v = finiteOrZero(value, &work.nonFiniteSamples);
-            if (visit.keep) film.add(visit.x, visit.y, v);
+        if (tile && visit.keep && work.offsets.size() != work.values.size())
+            throw std::logic_error("a pixel hook gave values without their film positions");
+        for (size_t i = 0; i < work.values.size(); ++i) {
+            const Rgb v = finiteOrZero(work.values[i], &work.nonFiniteSamples);
+            if (!visit.keep) continue;
+            if (tile) {
+                tile->add(film.filter(), visit.x, visit.y, work.offsets[i], v);
+                film.countSample(visit.x, visit.y);
+            } else {
+                film.add(visit.x, visit.y, v);
+            }
         }
         if (visit.keep) kept += work.values.size();
     }
@@ -124,8 +159,11 @@ RenderStats render(RenderSchedule& schedule, const RenderOptions& options, Film&
         }
         const Clock::time_point roundStart = Clock::now();
         RoundTotals totals;
-        arena.execute(
-            [&] { totals = runRound(schedule, round, sampler, options, film, reporter); });
+        if (film.splats()) film.beginRound(round.units);
+        arena.execute([&] {
+            totals = runRound(schedule, round, sampler, options, film, reporter);
+            film.endRound();
+        });
         stats.rays += totals.rays;
         stats.nonFiniteSamples += totals.nonFinite;
         kept += totals.kept;

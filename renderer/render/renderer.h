@@ -1,7 +1,9 @@
 // The render loop: asks a schedule (render_schedule.h) for rounds and runs each round's units in
 // parallel on oneTBB, each unit's pixels in order through the unit's pixel hook, adding the
-// kept samples to the film. Each pixel is only ever written by one unit per round, in sample
-// order, so the film is bit-identical for any thread count.
+// kept samples to the film. With the box filter each pixel is only ever written by one unit per
+// round, in sample order; a splatting film takes each unit's samples into a tile of its own and
+// adds the tiles in unit order at the round's end (film.h). Either way the film is
+// bit-identical for any thread count.
 #pragma once
 
 #include <atomic>

@@ -12,7 +12,7 @@ BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) 
     return {std::move(integrator), [samples](const ScheduleInputs& in) {
                 samples->beginImage(in.width, in.height, /*iterated=*/false);
                 return std::make_unique<UniformPasses>(in.scene, *samples, in.width, in.height,
-                                                       in.spp, in.timeLimit);
+                                                       in.spp, in.timeLimit, in.splattingFilm());
             }};
 }
 

@@ -15,6 +15,7 @@
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
 #include "integrators/path_tracer.h"
+#include "render/reconstruction_filter.h"
 #include "render/render_schedule.h"
 
 namespace rr {
@@ -26,6 +27,11 @@ struct ScheduleInputs {
     uint32_t spp = 0;  // with a time limit, an upper bound
     double timeLimit = 0;
     uint32_t seed = 0;  // the render's seed, for decisions a schedule draws itself
+    // The scene's reconstruction filter. Any but the box splats samples into neighbouring
+    // pixels (film.h), whose sums depend on how the samples are cut into rounds: the cut must
+    // then follow a plan fixed by the settings, never by timing.
+    FilterSettings filter;
+    bool splattingFilm() const { return filter.type != FilterType::Box; }
 };
 using ScheduleMaker = std::function<std::unique_ptr<RenderSchedule>(const ScheduleInputs&)>;
 

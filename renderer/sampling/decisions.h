@@ -9,7 +9,7 @@
 namespace rr {
 
 enum class Decision : uint8_t {
-    FilmPosition,     // 2-D: position inside the pixel
+    FilmPosition,     // 2-D: position inside the pixel (never warped: a splatting film reads it)
     Time,             // 1-D: instant within the shutter interval
     Lens,             // 2-D: point on the thin-lens aperture
     LightSelect,      // 1-D: which light to sample for next-event estimation

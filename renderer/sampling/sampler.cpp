@@ -48,6 +48,8 @@ uint32_t divideByMagic(uint32_t k, uint64_t magic) {
 constexpr uint64_t kRotation2D = 0x3c6ef372fe94f82bULL;
 constexpr uint64_t kJitter1D = 0xa54ff53a5f1d36f1ULL;
 constexpr uint64_t kJitter2D = 0x510e527fade682d1ULL;
+// Distinguishes pbrt_v1's per-sample repeat sets from the pixel's sets.
+constexpr uint64_t kRepeatSet = 0x9b05688c2b3e6c1fULL;
 
 }  // namespace
 
@@ -59,13 +61,15 @@ const char* samplerName(SamplerType type) {
             return "stratified";
         case SamplerType::Hammersley:
             return "hammersley";
+        case SamplerType::PbrtV1:
+            return "pbrt_v1";
     }
     return "?";
 }
 
 bool parseSamplerType(std::string_view name, SamplerType* out) {
-    for (SamplerType t :
-         {SamplerType::Independent, SamplerType::Stratified, SamplerType::Hammersley}) {
+    for (SamplerType t : {SamplerType::Independent, SamplerType::Stratified,
+                          SamplerType::Hammersley, SamplerType::PbrtV1}) {
         if (name == samplerName(t)) {
             *out = t;
             return true;
@@ -79,8 +83,10 @@ Sampler::Sampler(SamplerType type, uint32_t seed, uint32_t setSize)
       seed_(seed),
       setSize_(setSize < 1 ? 1 : setSize),
       seedKey_(mix64(uint64_t(seed) ^ 0x6a09e667f3bcc909ULL)) {
-    for (uint32_t r = 1; r <= kCachedRepeatCounts; ++r)
+    for (uint32_t r = 1; r <= kCachedRepeatCounts; ++r) {
         shapes_[r - 1] = makeShape(setSize_ * r);
+        repeatShapes_[r - 1] = makeShape(r);
+    }
 }
 
 Sampler::SetShape Sampler::makeShape(uint32_t n) {
@@ -108,16 +114,36 @@ PixelSample::SetPosition PixelSample::setPosition(const DecisionSite& site, uint
     return p;
 }
 
+PixelSample::SetDraw PixelSample::setDraw(const DecisionSite& site) const {
+    const Sampler& s = *sampler_;
+    const uint32_t repeatCount = repeatsOf(site);
+    if (s.type_ == SamplerType::PbrtV1 && repeatCount > 1) {
+        // This pixel sample's repeats alone: a set keyed by the sample too.
+        const Sampler::SetShape shape = s.repeatShape(repeatCount);
+        SetPosition p;
+        p.key = mixKey(mixKey(key_, kRepeatSet + slot_),
+                       DecisionSite{site.decision, site.vertex}.key() >> 32);
+        p.index = site.repeat;
+        p.point = permuteIndex(p.index, shape.size, static_cast<uint32_t>(p.key));
+        return {shape.size,       shape.columns, shape.rows,         shape.invSize,
+                shape.invColumns, shape.invRows, shape.columnsMagic, p};
+    }
+    const Sampler::SetShape shape = s.shape(repeatCount);
+    return {shape.size,         shape.columns,
+            shape.rows,         shape.invSize,
+            shape.invColumns,   shape.invRows,
+            shape.columnsMagic, setPosition(site, repeatCount, shape.size)};
+}
+
 float PixelSample::get1D(const DecisionSite& site) const {
     const Sampler& s = *sampler_;
     if (s.type_ == SamplerType::Independent)
         return toUnitFloat(pcgOutput(mixKey(key_, site.key())));
 
-    const uint32_t repeatCount = repeatsOf(site);
-    const Sampler::SetShape shape = s.shape(repeatCount);
-    const auto [key, j, k] = setPosition(site, repeatCount, shape.size);
+    const SetDraw shape = setDraw(site);
+    const auto [key, j, k] = shape.position;
     float x;
-    if (s.type_ == SamplerType::Stratified) {
+    if (s.type_ != SamplerType::Hammersley) {
         const float jitter = toUnitFloat(high32(mixKey(key ^ kJitter1D, j)));
         x = (static_cast<float>(k) + jitter) * shape.invSize;
     } else {
@@ -134,11 +160,10 @@ Vec2 PixelSample::get2D(const DecisionSite& site) const {
         return {toUnitFloat(pcgOutput(h)), toUnitFloat(pcgOutput(pcgStep(h)))};
     }
 
-    const uint32_t repeatCount = repeatsOf(site);
-    const Sampler::SetShape shape = s.shape(repeatCount);
-    const auto [key, j, k] = setPosition(site, repeatCount, shape.size);
+    const SetDraw shape = setDraw(site);
+    const auto [key, j, k] = shape.position;
     Vec2 p;
-    if (s.type_ == SamplerType::Stratified) {
+    if (s.type_ != SamplerType::Hammersley) {
         const uint32_t row = shape.columns > 1 ? divideByMagic(k, shape.columnsMagic) : k;
         const uint32_t column = k - row * shape.columns;
         const uint64_t jitter = mixKey(key ^ kJitter2D, j);

@@ -3,8 +3,11 @@
 // so images do not depend on thread count or scheduling. Structured samplers stratify the
 // `setSize` samples of a pixel together (the pixel's spp when known in advance); sample
 // index s belongs to set s / setSize, and every set is an independent structured pattern.
-// All three add a per-(pixel, decision) Cranley–Patterson rotation, which makes every single
-// coordinate exactly uniform, so any prefix of samples is an unbiased estimate.
+// The repeats of a decision (several light samples per pixel sample) are stratified with the
+// set's samples, except under pbrt_v1, where each pixel sample's repeats are a jittered set of
+// their own, as pbrt-v1 draws its light and BSDF sample arrays. All structured samplers add a
+// per-(pixel, decision) Cranley–Patterson rotation, which makes every single coordinate exactly
+// uniform, so any prefix of samples is an unbiased estimate.
 #pragma once
 
 #include <array>
@@ -21,6 +24,13 @@ enum class SamplerType : uint8_t {
     Independent,  // hashed PCG per coordinate
     Stratified,   // jittered strata, randomly permuted per decision
     Hammersley,   // Hammersley points + per-pixel Cranley–Patterson rotation (two-stage paper)
+    // pbrt-v1's sampling (its default best-candidate sampler, samplers/bestcandidate.cpp): the
+    // pixel's samples stratified together in each single decision (film position, lens, time,
+    // and a path's decisions), as `stratified` does, in place of pbrt-v1's image-wide
+    // best-candidate table; a decision drawn n > 1 times per pixel sample gets n jittered strata
+    // of its own per pixel sample (StratifiedSample1D/2D; 2-D sets on a grid of the largest
+    // divisor of n not above √n: pbrt-v1's integrators ask for squares, RoundSize).
+    PbrtV1,
 };
 
 const char* samplerName(SamplerType type);
@@ -52,6 +62,14 @@ class PixelSample {
         uint32_t index, point;
     };
     SetPosition setPosition(const DecisionSite& site, uint32_t repeatCount, uint32_t size) const;
+    // The structured set a draw of `site` belongs to: its shape and the draw's place in it.
+    struct SetDraw {
+        uint32_t size, columns, rows;
+        float invSize, invColumns, invRows;
+        uint64_t columnsMagic;
+        SetPosition position;
+    };
+    SetDraw setDraw(const DecisionSite& site) const;
 
     const Sampler* sampler_;
     // Hash of (seed, pixel, sample) for the independent sampler, of (seed, pixel, set) for the
@@ -94,6 +112,11 @@ class Sampler {
         return repeatCount <= kCachedRepeatCounts ? shapes_[repeatCount - 1]
                                                   : makeShape(setSize_ * repeatCount);
     }
+    // pbrt_v1's set of one pixel sample's repeats.
+    SetShape repeatShape(uint32_t repeatCount) const {
+        return repeatCount <= kCachedRepeatCounts ? repeatShapes_[repeatCount - 1]
+                                                  : makeShape(repeatCount);
+    }
 
     // Repeat counts up to this have their set shape precomputed.
     static constexpr uint32_t kCachedRepeatCounts = 64;
@@ -102,7 +125,8 @@ class Sampler {
     uint32_t seed_;
     uint32_t setSize_;
     uint64_t seedKey_;
-    std::array<SetShape, kCachedRepeatCounts> shapes_;  // [r − 1]: setSize_ × r points
+    std::array<SetShape, kCachedRepeatCounts> shapes_;        // [r − 1]: setSize_ × r points
+    std::array<SetShape, kCachedRepeatCounts> repeatShapes_;  // [r − 1]: r points
 };
 
 }  // namespace rr

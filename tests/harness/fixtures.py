@@ -1,13 +1,14 @@
 """Shared test data: a minimal valid experiment config and a synthetic results document."""
 import copy
 import json
+import os
 import sys
 import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "experiments"))
 
-from harness import config, records, stats  # noqa: E402
+from harness import config, paths, records, stats  # noqa: E402
 
 VALID = {
     "description": "test experiment",
@@ -58,8 +59,9 @@ def tiny_matched():
     }
 
 
-def load_config(document, figure="figure"):
-    """Writes `document` (a dict, or raw text or bytes) as <tmp>/paper/<figure>.json and loads it."""
+def write_config(document, figure="figure"):
+    """Writes `document` (a dict, or raw text or bytes) as <tmp>/paper/<figure>.json; returns
+    its path."""
     directory = Path(tempfile.mkdtemp()) / "paper"
     directory.mkdir()
     file = directory / f"{figure}.json"
@@ -67,7 +69,17 @@ def load_config(document, figure="figure"):
         file.write_bytes(document)
     else:
         file.write_text(document if isinstance(document, str) else json.dumps(document))
-    return config.load(file)
+    return file
+
+
+def load_config(document, figure="figure"):
+    """Writes `document` as write_config does and loads it."""
+    return config.load(write_config(document, figure))
+
+
+def from_root(file):
+    """A path as a variant's "variant_of" names it: relative to the repository root."""
+    return os.path.relpath(file, paths.ROOT)
 
 
 def summary_entry(technique, kind, budget, metric_values, gain=None):

@@ -1,13 +1,20 @@
 """Experiment configs: a valid one loads; every kind of bad input names its JSON pointer;
-the schema is a valid schema that every committed config satisfies."""
+the schema is a valid schema that every committed config satisfies; a variant is merged onto
+its parent."""
 import json
+import os
+import subprocess
+import sys
+import tempfile
 import unittest
+from pathlib import Path
 
 import jsonschema
 
-from fixtures import load_config, valid
-from harness import config, paths, renders
+from fixtures import from_root, load_config, summary_entry, valid, write_config
+from harness import config, paths, renders, stats
 from harness.errors import ConfigError
+from harness.records import to_json
 
 
 class ValidConfigTest(unittest.TestCase):
@@ -243,6 +250,226 @@ class MatchedConfigTest(unittest.TestCase):
                 self.assertRejects(self.mutated(change), pointer, fragment)
 
 
+def parent_doc():
+    """The fixture config with a third technique as the second baseline, two overrides and the
+    paper's numbers in two entries."""
+    doc = valid()
+    doc["set"] = {"/render/sampler": "independent", "/render/rr_depth": 3}
+    doc["techniques"]["third"] = {"label": "third", "integrator": {"type": "path_mis"}}
+    doc["also_baseline"] = "third"
+    doc["paper"] = [doc["paper"], {"source": "another table", "metric": "sigma_over_mu",
+                                   "spp": 16, "values": {"third": 0.7}}]
+    return doc
+
+
+class VariantTest(unittest.TestCase):
+    """"variant_of": a variant is merged onto its parent, then loaded as any experiment."""
+
+    def setUp(self):
+        self.parent_file = write_config(parent_doc(), figure="parent")
+
+    def variant(self, **keys):
+        doc = {"variant_of": from_root(self.parent_file), "description": "through another film",
+               "set": {"/render/filter": {"type": "mitchell"}, "/render/sampler": "stratified"},
+               "techniques": ["better", "base"]}
+        doc.update(keys)
+        return doc
+
+    def test_merges_onto_the_parent(self):
+        exp = load_config(self.variant(), figure="film")
+        parent = config.load(self.parent_file)
+        self.assertEqual(exp.id, "paper/film")
+        self.assertEqual(exp.files, [exp.file, self.parent_file])
+        self.assertEqual(exp.variant_of, self.parent_file)
+        self.assertIsNone(parent.variant_of)
+        self.assertEqual(exp.description, "through another film")
+        # The parent's overrides, then the variant's: a pointer both set moves to its place.
+        self.assertEqual(list(exp.overrides.items()),
+                         [("/render/rr_depth", 3), ("/render/filter", {"type": "mitchell"}),
+                          ("/render/sampler", "stratified")])
+        self.assertEqual(list(exp.techniques), ["better", "base"])
+        self.assertEqual(exp.techniques["better"], parent.techniques["better"])
+        self.assertEqual(exp.baseline, "base")
+        self.assertIsNone(exp.also_baseline)  # the parent's, "third", is not kept
+        self.assertEqual([(p.source, p.values) for p in exp.paper],
+                         [("a paper", {"base": 1.0, "better": 0.5})])
+        self.assertIsNone(exp.thresholds)  # the parent's are not inherited
+        for key in ("scene", "metrics", "reference_integrator", "profiles", "relmse_reject",
+                    "slope_time_range"):
+            self.assertEqual(getattr(exp, key), getattr(parent, key), key)
+
+    def test_extra_techniques_follow_the_kept_and_a_kept_second_baseline_stays(self):
+        extra = {"extra": {"label": "extra", "integrator": {"type": "path"}}}
+        exp = load_config(self.variant(techniques=["third", "base"], extra_techniques=extra))
+        self.assertEqual(list(exp.techniques), ["third", "base", "extra"])
+        self.assertEqual(exp.techniques["extra"].label, "extra")
+        self.assertEqual((exp.baseline, exp.also_baseline), ("base", "third"))
+        self.assertEqual([p.values for p in exp.paper], [{"base": 1.0}, {"third": 0.7}])
+
+    def test_a_paper_object_stays_an_object(self):
+        doc = parent_doc()
+        doc["paper"] = doc["paper"][0]
+        self.parent_file.write_text(json.dumps(doc))
+        exp = load_config(self.variant(techniques=["base", "third"]))
+        self.assertEqual([p.values for p in exp.paper], [{"base": 1.0}])
+        exp = load_config(self.variant(techniques=["third"], baseline="third"))
+        self.assertEqual(exp.paper, [])
+
+    def test_given_baselines_replace_the_parents(self):
+        exp = load_config(self.variant(techniques=["base", "better", "third"],
+                                       baseline="better", also_baseline="base"))
+        self.assertEqual((exp.baseline, exp.also_baseline), ("better", "base"))
+        # The parent's second baseline made the baseline is not also the second baseline.
+        exp = load_config(self.variant(techniques=["third", "better"], baseline="third"))
+        self.assertEqual((exp.baseline, exp.also_baseline), ("third", None))
+
+    def test_given_keys_replace_the_parents_whole(self):
+        profiles = valid()["profiles"]
+        profiles["quick"].update(resolution=[4, 4], spp=[16])
+        thresholds = {"profile": "quick", "method": "the variant's own",
+                      "checks": [{"technique": "better", "spp": 16, "max_error": 0.2}]}
+        exp = load_config(self.variant(
+            metrics=["sigma_over_mu", "rmse"], reference={"integrator": {"type": "path"}},
+            profiles=profiles, relmse_reject=0.001, slope_time_range="common",
+            scene="configs/scenes/cornell_spheres.json", thresholds=thresholds))
+        self.assertEqual(exp.metrics, ["sigma_over_mu", "rmse"])
+        self.assertEqual(exp.reference_integrator, {"type": "path"})
+        self.assertEqual(exp.profiles["quick"].spp, [16])
+        self.assertEqual(exp.profiles["quick"].seconds, [0.5])  # not merged with the parent's
+        self.assertEqual((exp.relmse_reject, exp.slope_time_range), (0.001, "common"))
+        self.assertEqual(exp.thresholds.method, "the variant's own")
+
+    def test_the_profile_hash_follows_the_merged_document(self):
+        variant_file = write_config(self.variant())
+        before = config.load(variant_file).profile_sha256
+        self.assertNotEqual(before, config.load(self.parent_file).profile_sha256)
+
+        def hash_after(change):
+            doc = parent_doc()
+            change(doc)
+            self.parent_file.write_text(json.dumps(doc))
+            return config.load(variant_file).profile_sha256
+
+        self.assertEqual(hash_after(lambda d: d["thresholds"].update(method="again")), before)
+        self.assertEqual(hash_after(lambda d: d.update(description="reworded")), before)
+        self.assertNotEqual(hash_after(lambda d: d["techniques"]["better"].update(label="b")),
+                            before)
+        self.assertNotEqual(hash_after(lambda d: d["set"].update({"/render/rr_depth": 4})),
+                            before)
+        after = hash_after(lambda d: d["profiles"]["full"].update(seeds=6))
+        self.assertEqual(after["quick"], before["quick"])
+        self.assertNotEqual(after["full"], before["full"])
+
+    def assertRejects(self, doc, pointer, fragment, file=None):
+        """`file`: the file the error names, if not the variant's."""
+        variant_file = write_config(doc)
+        with self.assertRaises(ConfigError) as caught:
+            config.load(variant_file)
+        self.assertEqual(caught.exception.file, str(file or variant_file))
+        self.assertEqual(caught.exception.pointer, pointer, str(caught.exception))
+        self.assertIn(fragment, caught.exception.message)
+
+    def test_errors_name_their_pointer(self):
+        allowed = ("also_baseline, baseline, description, extra_techniques, metrics, profiles, "
+                   "reference, relmse_reject, scene, set, slope_time_range, techniques, "
+                   "thresholds, variant_of")
+        cases = [
+            (self.variant(variant_of="configs/experiments/none/missing.json"), "/variant_of",
+             "not found"),
+            (self.variant(variant_of=7), "/variant_of", "non-empty string"),
+            (self.variant(paper={}), "/paper", f"unknown key (expected one of: {allowed})"),
+            (self.variant(baselin="base"), "/baselin", "unknown key"),
+            ({k: v for k, v in self.variant().items() if k != "description"}, "/description",
+             "missing"),
+            ({k: v for k, v in self.variant().items() if k != "techniques"}, "/techniques",
+             "missing"),
+            (self.variant(techniques=[]), "/techniques", "non-empty list"),
+            (self.variant(techniques=["base", "base"]), "/techniques", "each once"),
+            (self.variant(techniques=["base", "ghost"]), "/techniques/1",
+             "techniques (known: base, better, third)"),
+            (self.variant(extra_techniques={"base": {"integrator": {"type": "path"}}}),
+             "/extra_techniques/base", "the name of a kept technique"),
+            (self.variant(extra_techniques={"x": {"integrator": {}}}),
+             "/extra_techniques/x/integrator/type", "missing"),
+            (self.variant(extra_techniques={"x": {"integrator": {"type": "path"},
+                                                  "equal_time": False}}),
+             "/extra_techniques/x/equal_time", "only to a fixed-spp technique"),
+            (self.variant(techniques=["better", "third"]), "/baseline",
+             "the parent's baseline, base, is not kept"),
+            (self.variant(baseline="third"), "/baseline", "one of the techniques"),
+            (self.variant(also_baseline="base"), "/also_baseline", "differ"),
+            (self.variant(set={"/render/spp": 4}), "/set/~1render~1spp", "set by the harness"),
+            (self.variant(thresholds={"profile": "quick", "method": "m", "checks": [
+                {"technique": "third", "spp": 16, "max_error": 1.0}]}),
+             "/thresholds/checks/0/technique", "not one of the techniques"),
+            # Inherited numbers that disagree with what the variant gives: named as inherited.
+            (self.variant(metrics=["rmse"]), "/paper/0/metric",
+             f"is not one of the experiment's metrics (/paper is inherited from "
+             f"{from_root(self.parent_file)})"),
+        ]
+        for doc, pointer, fragment in cases:
+            with self.subTest(pointer=pointer, fragment=fragment):
+                self.assertRejects(doc, pointer, fragment)
+
+    def test_no_chains(self):
+        middle = write_config(self.variant(), figure="middle")
+        self.assertRejects(self.variant(variant_of=from_root(middle)), "/variant_of",
+                           "is itself a variant (of \"")
+        # Nor itself.
+        file = write_config(self.variant())
+        file.write_text(json.dumps(self.variant(variant_of=from_root(file))))
+        with self.assertRaises(ConfigError) as caught:
+            config.load(file)
+        self.assertEqual((caught.exception.file, caught.exception.pointer),
+                         (str(file), "/variant_of"))
+        self.assertIn("is itself a variant", caught.exception.message)
+
+    def test_an_error_in_the_parent_names_the_parents_file(self):
+        doc = parent_doc()
+        doc["baseline"] = "nope"
+        self.parent_file.write_text(json.dumps(doc))
+        self.assertRejects(self.variant(), "/baseline", "one of the techniques",
+                           file=self.parent_file)
+
+    def test_an_inherited_matched_spp_needs_a_kept_fixed_spp_technique(self):
+        doc = parent_doc()
+        doc["techniques"]["third"]["fixed_spp"] = True
+        doc["profiles"]["quick"]["matched_spp"] = [16]
+        self.parent_file.write_text(json.dumps(doc))
+        self.assertRejects(self.variant(), "/profiles/quick/matched_spp",
+                           "(/profiles is inherited from")
+
+    def test_calibrate_proposes_thresholds_for_the_variants_own_file(self):
+        """`run.py calibrate` on a variant: its block, pasted into the variant's file as
+        configs/README.md says, keeps the file a variant and its results current."""
+        variant = self.variant(techniques=["base", "better"])
+        variant_file = write_config(variant, figure="film")
+        exp = config.load(variant_file)
+        base, better = [0.58, 0.60, 0.62, 0.59, 0.61], [0.24, 0.25, 0.26, 0.245, 0.255]
+        results = {"summary": [to_json(summary_entry("base", "spp", 16, base)),
+                               to_json(summary_entry("better", "spp", 16, better,
+                                                     stats.gain(base, better, False)))],
+                   "seeds": list(range(5)), "profile": "quick",
+                   "config": {"file": paths.relative(variant_file),
+                              "sha256": exp.profile_sha256["quick"]},
+                   "provenance": {"git_commit": None, "started": "2026-11-22"}}
+        parent_text = self.parent_file.read_text()
+        with tempfile.TemporaryDirectory() as root:
+            results_file = Path(root) / "results" / "paper" / "film.json"
+            results_file.parent.mkdir(parents=True)
+            results_file.write_text(json.dumps(results))
+            printed = subprocess.run(
+                [sys.executable, paths.ROOT / "experiments" / "run.py", "calibrate",
+                 variant_file, "--spp", "16"], env={**os.environ, "HARNESS_OUTPUT_ROOT": root},
+                capture_output=True, text=True, check=True).stdout
+        variant_file.write_text(json.dumps({**variant, **json.loads(printed)}))
+        calibrated = config.load(variant_file)
+        self.assertEqual(calibrated.variant_of, self.parent_file)
+        self.assertEqual([c.technique for c in calibrated.thresholds.checks], ["base", "better"])
+        self.assertEqual(calibrated.profile_sha256, exp.profile_sha256)
+        self.assertEqual(self.parent_file.read_text(), parent_text)
+
+
 class SchemaTest(unittest.TestCase):
     """configs/schema/experiment.schema.json on its own, as an editor uses it."""
 
@@ -263,11 +490,25 @@ class SchemaTest(unittest.TestCase):
                 validator.validate(json.loads(file.read_text(encoding="utf-8")))
                 config.load(file)
 
+    def test_a_variant_is_a_document_of_the_schema(self):
+        validator = jsonschema.Draft202012Validator(self.schema)
+        variant = {"variant_of": "configs/experiments/core/path_vs_mis.json",
+                   "description": "a variant", "techniques": ["path"]}
+        validator.validate(variant)
+        self.assertFalse(validator.is_valid({**variant, "paper": {}}))
+        self.assertFalse(validator.is_valid({**valid(), "variant_of": variant["variant_of"]}))
+
     def test_names_agree_with_the_code(self):
-        self.assertEqual(self.schema["$defs"]["metric"]["enum"], list(config.METRICS))
-        self.assertEqual(self.schema["$defs"]["thresholds"]["properties"]["profile"]["enum"],
+        defs = self.schema["$defs"]
+        self.assertEqual(defs["metric"]["enum"], list(config.METRICS))
+        self.assertEqual(defs["thresholds"]["properties"]["profile"]["enum"],
                          list(config.PROFILES))
-        self.assertEqual(self.schema["properties"]["profiles"]["required"], list(config.PROFILES))
+        self.assertEqual(defs["experiment"]["properties"]["profiles"]["required"],
+                         list(config.PROFILES))
+        variant = set(defs["variant"]["properties"])
+        self.assertLessEqual(set(config.VARIANT_REPLACES), variant)
+        self.assertLessEqual(variant - {"variant_of", "extra_techniques"},
+                             set(defs["experiment"]["properties"]))
 
 
 class SchemaErrorTest(unittest.TestCase):

@@ -3,7 +3,8 @@ a tiny experiment with a fixed-spp technique matched at equal time, run by each 
 scratch tree of its own ($HARNESS_OUTPUT_ROOT), reference included. Everything that does not
 depend on how long a render took must come out equal: the equal-sample records and summaries,
 the slopes of the technique that has no equal-time runs, the matched budgets' techniques and
-spp, and the reference's pixels. A second Snakemake run finds nothing to do.
+spp, and the reference's pixels. A second Snakemake run finds nothing to do, until a config
+changes: a variant's renders depend on its parent's file too.
 
 With $SNAKEMAKE_TEST_PROFILE (a profile directory, e.g. experiments/profiles/slurm), Snakemake
 runs the jobs through that profile instead of on 2 local cores: tests/cluster/slurm_test.sh
@@ -17,7 +18,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from fixtures import load_config, tiny_matched
+from fixtures import from_root, load_config, tiny_matched
 from harness import config, paths
 
 RUN_PY = paths.ROOT / "experiments" / "run.py"
@@ -70,9 +71,11 @@ class SnakemakeEngineTest(unittest.TestCase):
         cls.addClassCleanup(scratch.cleanup)
         cls.root = Path(scratch.name)
         cls.exp = load_config(tiny_matched(), figure="tiny")
-        # The same experiment again: its reference has the same key, so the workflow renders
-        # the halves once for both.
-        cls.twin = load_config(tiny_matched(), figure="twin")
+        # The same experiment again, as a variant of it: its reference has the same key, so
+        # the workflow renders the halves once for both.
+        cls.twin = load_config({"variant_of": from_root(cls.exp.file),
+                                "description": "Matched equal time, end to end, again.",
+                                "techniques": ["path", "path_mis"]}, figure="twin")
         cls.harness_root, cls.snakemake_root = cls.root / "harness", cls.root / "snakemake"
         for subcommand in ("references", "run"):
             run([sys.executable, RUN_PY, subcommand, cls.exp.file], cls.harness_root)
@@ -147,6 +150,17 @@ class SnakemakeEngineTest(unittest.TestCase):
         out = run(dry_run, self.snakemake_root)
         self.assertRegex(out, r"reference\s+1\b")
         self.assertRegex(out, r"render\s+20\b")  # the first phase; the checkpoint adds 5
+
+    def test_editing_a_variants_parent_makes_the_variant_out_of_date(self):
+        dry_run = [*self.snakemake, "--dry-run", "--quiet", "rules"]
+        # Snakemake reruns for an input of new content, not for a new time alone.
+        text = self.exp.file.read_text()
+        self.addCleanup(self.exp.file.write_text, text)
+        self.exp.file.write_text(text + "\n")
+        out = run(dry_run, self.snakemake_root)
+        # The first phases of both: the parent's and the variant's (the twin).
+        self.assertRegex(out, r"render\s+40\b")
+        self.assertRegex(out, r"assemble\s+2\b")
 
 
 if __name__ == "__main__":

@@ -177,7 +177,7 @@ Json withIntegrator(Json doc, const char* integrator) {
 std::string refusal(const std::vector<std::string>& overrides) {
     try {
         const LoadedScene s = loadSceneFile("pmc_fig6_checker_floor.json", overrides);
-        s.schedule(ScheduleInputs{*s.scene, s.render.width, s.render.height, s.render.spp, 0, 1});
+        s.schedule(s.scheduleInputs(s.render.spp, 0));
     } catch (const ConfigError& e) {
         return e.pointer();
     }

@@ -38,14 +38,15 @@ Ray inFileSpace(const Scene& scene, Ray ray) {
 }
 
 TestRender renderScene(const LoadedScene& scene, uint32_t spp, uint32_t seed, int threads) {
-    TestRender r{Film(scene.render.width, scene.render.height), {}};
+    TestRender r{Film(scene.render.width, scene.render.height, scene.filmFilter()), {}};
     RenderOptions options;
     options.seed = seed;
     options.threads = threads;
     options.sampler = scene.render.sampler;
     options.samplerSetSize = spp;
     const std::unique_ptr<RenderSchedule> schedule = scene.schedule(
-        ScheduleInputs{*scene.scene, scene.render.width, scene.render.height, spp, 0, seed});
+        ScheduleInputs{*scene.scene, scene.render.width, scene.render.height, spp, 0, seed,
+                       scene.render.filter});
     r.stats = render(*schedule, options, r.film);
     return r;
 }

@@ -60,4 +60,45 @@ void mixtureCounts(std::span<const double> alpha, uint64_t total, double u,
     }
 }
 
+std::vector<double> staticAllocation(const std::vector<double>& sampleVariance,
+                                     const std::vector<double>& meanLuminance, uint64_t total,
+                                     double cdPerUnit) {
+    if (sampleVariance.size() != meanLuminance.size())
+        throw std::logic_error("one variance and one luminance per pixel");
+    const size_t pixels = sampleVariance.size();
+    if (total < pixels) throw std::logic_error("a static allocation needs a sample per pixel");
+    std::vector<double> a(pixels);
+    double largest = 0;
+    for (size_t k = 0; k < pixels; ++k) {
+        const double sigma = std::sqrt(std::max(0.0, sampleVariance[k])) * cdPerUnit;
+        a[k] = sigma / std::sqrt(photopicTvi(std::max(0.0, meanLuminance[k]) * cdPerUnit));
+        largest = std::max(largest, a[k]);
+    }
+    const double n = double(total);
+    std::vector<double> expected(pixels, n / double(pixels));
+    if (!(largest > 0)) return expected;
+    auto used = [&](double lambda) {
+        double sum = 0;
+        for (double ak : a)
+            sum += std::max(1.0, lambda * ak);
+        return sum;
+    };
+    // used(0) = pixels ≤ n and used(n / largest) ≥ n: the root is between; lo stays below it.
+    double lo = 0, hi = n / largest;
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (used(mid) < n ? lo : hi) = mid;
+    }
+    // What lo leaves over goes to the pixels above the floor, in proportion.
+    double above = 0;
+    for (size_t k = 0; k < pixels; ++k) {
+        expected[k] = std::max(1.0, lo * a[k]);
+        above += expected[k] - 1;
+    }
+    const double left = n - used(lo);
+    for (double& e : expected)
+        e += above > 0 ? left * (e - 1) / above : left / double(pixels);
+    return expected;
+}
+
 }  // namespace rr::pmc

@@ -30,4 +30,14 @@ std::vector<double> mixtureWeights(const std::vector<double>& sampleVariance,
 void mixtureCounts(std::span<const double> alpha, uint64_t total, double u,
                    std::span<uint32_t> counts);
 
+// The best static allocation of `total` samples for the tvi error when each pixel's per-sample
+// variance σ² is known (the bound of Table 1's rows, not the paper's rule): the error of a
+// pixel estimated from n independent samples is σ²/(n tvi(L)), and Σ σ²/(n tvi) over the image
+// with Σ n = total and every n ≥ 1 is least at n = max(1, λ σ/√tvi) (Lagrange, with the
+// bound's multiplier: water-filling), λ found by bisection. Returns the expected counts n (at
+// least 1 each, summing to `total`). A flat image gets total / pixels each.
+std::vector<double> staticAllocation(const std::vector<double>& sampleVariance,
+                                     const std::vector<double>& meanLuminance, uint64_t total,
+                                     double cdPerUnit);
+
 }  // namespace rr::pmc

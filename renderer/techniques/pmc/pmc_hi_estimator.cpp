@@ -56,8 +56,8 @@ struct PmcHiEstimator::Draw {
     // One for all lights: the light's selection × areaLightPdf, or for a direction that escapes
     // the summed density of the infinite lights (ShadingPoint::infiniteLightPdf).
     float selectedLightPdf = 0;
-    bool escaped = false;        // a direction to the infinite lights
-    float weight = 0;            // luminance of f·Le·V / K, for the adaptation
+    bool escaped = false;  // a direction to the infinite lights
+    float weight = 0;      // luminance of f·Le·V / K, for the adaptation
 };
 
 nlohmann::json PmcHiEstimator::parameters() const {

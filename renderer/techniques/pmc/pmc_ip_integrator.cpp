@@ -5,7 +5,6 @@
 
 #include "config/config_error.h"
 #include "math/tvi.h"
-#include "render/iterated_allocation.h"
 #include "render/renderer.h"
 #include "sampling/hash.h"
 #include "techniques/pmc/mixture_allocation.h"
@@ -18,6 +17,11 @@ namespace {
 double residualOffset(uint32_t seed, int iteration) {
     constexpr uint64_t kResidualTag = 0x706d635f6970;  // "pmc_ip"
     return double(hashKeys(kResidualTag, seed, uint64_t(iteration)) >> 11) * 0x1p-53;
+}
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 }  // namespace
@@ -33,12 +37,17 @@ nlohmann::json PmcIpIntegrator::parameters() const {
     nlohmann::json p;
     p["type"] = name();
     p["integrator"] = pixelIntegrator_->parameters();
-    p["initial_spp"] = settings_.initialSpp;
-    p["iteration_spp"] = settings_.iterationSpp;
-    p["epsilon"] = settings_.epsilon;
+    if (settings_.knownVarianceSpp > 0) {
+        p["known_variance_spp"] = settings_.knownVarianceSpp;
+    } else {
+        p["initial_spp"] = settings_.initialSpp;
+        p["iteration_spp"] = settings_.iterationSpp;
+        p["epsilon"] = settings_.epsilon;
+    }
     p["image"] = settings_.image == ImageEstimate::Iterations ? "iterations" : "pooled";
-    if (completedIterations() > 0) {
-        p["iterations"] = completedIterations();
+    const int completed = iterationsDone_ + (currentIterationRan() && !pilot_ ? 1 : 0);
+    if (completed > 0) {
+        p["iterations"] = completed;
         p["adapt_seconds"] = adaptSeconds_;
     }
     return p;
@@ -46,139 +55,192 @@ nlohmann::json PmcIpIntegrator::parameters() const {
 
 std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& in) {
     pixelIntegrator_->beginImage(in.width, in.height, /*iterated=*/true);
-    const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
-    if (in.spp < initial)
-        throw ConfigError("/render/spp", "pmc_ip renders " + std::to_string(initial) +
-                                             " initial samples per pixel; " +
-                                             std::to_string(in.spp) + " spp is fewer");
     const uint64_t pixels = uint64_t(in.width) * uint64_t(in.height);
+    const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
+    if (settings_.knownVarianceSpp > 0) {
+        maxIterations_ = 1;
+    } else {
+        if (in.spp < initial)
+            throw ConfigError("/render/spp", "pmc_ip renders " + std::to_string(initial) +
+                                                 " initial samples per pixel; " +
+                                                 std::to_string(in.spp) + " spp is fewer");
+        // Iterations of `step` samples per pixel, the last taking what is left of the spp.
+        maxIterations_ = int((in.spp - initial + step - 1) / step);
+        lastIterationSpp_ = in.spp - initial - (maxIterations_ - 1) * step;
+    }
     width_ = in.width;
     seed_ = in.seed;
-    // Iterations of `step` samples per pixel, the last taking what is left of the spp.
-    maxIterations_ = int((in.spp - initial + step - 1) / step);
-    lastIterationSpp_ = in.spp - initial - (maxIterations_ - 1) * step;
+    spp_ = in.spp;
     iterationsDone_ = 0;
     planned_ = false;
+    pilot_ = false;
     ran_ = false;
     adaptSeconds_ = 0;
-    pixels_.assign(pixels, PixelState{});
+    record_.emplace(in.width, in.height, ReconstructionFilter(in.filter));
     alpha_.assign(pixels, 1.0 / double(pixels));
-    sampleWeight_.assign(pixels, 1.0 / initial);
     variance_.assign(pixels, 0.0);
+    control_.assign(pixels, Rgb(0.0f));
+    estimates_.assign(pixels, EstimateMoments{});
+    image_ = {};
     return std::make_unique<IteratedAllocation>(
         in.scene, *pixelIntegrator_, in.width, in.height, in.timeLimit,
-        [this](const Film&, int iteration, std::vector<uint32_t>* counts) {
-            return allocate(iteration, counts);
+        [this](const Film&, int iteration, IteratedAllocation::Plan* plan) {
+            completeIteration();
+            const bool more = settings_.knownVarianceSpp > 0
+                                  ? allocateKnownVariance(iteration, plan)
+                                  : allocate(iteration, plan);
+            planned_ = more;
+            ran_ = false;
+            return more;
         },
-        [this](const PixelVisit& visit, const std::vector<Rgb>& values) {
-            observe(visit, values);
-        });
+        [this](const PixelVisit& visit, const std::vector<Rgb>& values,
+               const std::vector<Vec2>& offsets) { observe(visit, values, offsets); },
+        [this] { finish(); });
 }
 
-bool PmcIpIntegrator::allocate(int iteration, std::vector<uint32_t>* counts) {
-    completeIteration();
+bool PmcIpIntegrator::allocate(int iteration, IteratedAllocation::Plan* plan) {
     if (iteration > maxIterations_) return false;
-    if (iteration == 0)
-        counts->assign(pixels_.size(), settings_.initialSpp);
-    else
-        adapt(counts);
-    planned_ = true;
-    ran_ = false;
+    if (iteration == 0) {
+        plan->counts.assign(record_->pixels(), settings_.initialSpp);
+        record_->beginIteration(plan->counts,
+                                std::vector<double>(record_->pixels(), settings_.initialSpp),
+                                /*pilot=*/false);
+    } else {
+        adapt(plan);
+    }
     return true;
 }
 
+void PmcIpIntegrator::drawCounts(uint64_t total, IteratedAllocation::Plan* plan) const {
+    plan->counts.resize(alpha_.size());
+    mixtureCounts(alpha_, total, residualOffset(seed_, iterationsDone_), plan->counts);
+}
+
 // §4.2 then §4.3, timed: the adaptation's cost is part of the render.
-void PmcIpIntegrator::adapt(std::vector<uint32_t>* counts) {
-    const auto start = std::chrono::steady_clock::now();
+void PmcIpIntegrator::adapt(IteratedAllocation::Plan* plan) {
+    const Clock::time_point start = Clock::now();
     pixelIntegrator_->commitPixelRecords();  // §6.1: PMC-HI starts from the α so far
-    const size_t pixels = pixels_.size();
-    std::vector<double> luminance(pixels);
-    for (size_t k = 0; k < pixels; ++k) {
-        const PixelState& p = pixels_[k];
-        const double n = p.samples, mean = p.luminanceSum / n;
-        luminance[k] = mean;
-        variance_[k] = std::max(0.0, (p.luminanceSquares - n * mean * mean) / (n - 1));
-    }
+    std::vector<double> luminance;
+    record_->varianceImage(&variance_, &luminance);
     alpha_ = mixtureWeights(variance_, luminance, settings_.epsilon, kDefaultCdPerUnit);
     const uint32_t spp =
         iterationsDone_ == maxIterations_ ? lastIterationSpp_ : settings_.iterationSpp;
-    const uint64_t total = uint64_t(pixels) * spp;
-    counts->resize(pixels);
-    mixtureCounts(alpha_, total, residualOffset(seed_, iterationsDone_), *counts);
-    for (size_t k = 0; k < pixels; ++k) {
-        sampleWeight_[k] = 1.0 / (double(total) * alpha_[k]);
-        PixelState& p = pixels_[k];
+    const uint64_t total = uint64_t(alpha_.size()) * spp;
+    drawCounts(total, plan);
+    std::vector<double> density(alpha_.size());
+    for (size_t k = 0; k < alpha_.size(); ++k) {
+        density[k] = double(total) * alpha_[k];
         // A pixel's count must stay exact in the film and the sampler.
-        if (uint64_t(p.samples) + (*counts)[k] > kMaxSpp)
+        if (uint64_t(record_->count(k)) + plan->counts[k] > kMaxSpp)
             throw std::runtime_error("pmc_ip: pixel " + std::to_string(k) +
                                      " would get more than 2^24 samples");
-        for (int c = 0; c < 3; ++c)
-            p.control[c] = p.rgbSum[c] / p.samples;
     }
-    adaptSeconds_ +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (settings_.image == ImageEstimate::Iterations) control_ = record_->pooledImage().values;
+    record_->beginIteration(plan->counts, std::move(density), /*pilot=*/false);
+    adaptSeconds_ += secondsSince(start);
 }
 
-void PmcIpIntegrator::observe(const PixelVisit& visit, const std::vector<Rgb>& values) {
+bool PmcIpIntegrator::allocateKnownVariance(int iteration, IteratedAllocation::Plan* plan) {
+    const size_t pixels = record_->pixels();
+    if (iteration == 0) {  // the pilot
+        plan->counts.assign(pixels, settings_.knownVarianceSpp);
+        plan->pilot = true;
+        pilot_ = true;
+        record_->beginIteration(plan->counts,
+                                std::vector<double>(pixels, settings_.knownVarianceSpp),
+                                /*pilot=*/true);
+        return true;
+    }
+    if (iteration > 1) return false;
+    const Clock::time_point start = Clock::now();
+    pilot_ = false;
+    std::vector<double> luminance;
+    record_->varianceImage(&variance_, &luminance);
+    record_->clearVarianceSums();
+    const uint64_t total = uint64_t(pixels) * spp_;
+    std::vector<double> expected = staticAllocation(variance_, luminance, total, kDefaultCdPerUnit);
+    // One sample each, then the rest by deterministic mixture sampling over n − 1, so that no
+    // pixel goes without.
+    double above = 0;
+    for (double e : expected)
+        above += e - 1;
+    for (size_t k = 0; k < pixels; ++k)
+        alpha_[k] = above > 0 ? (expected[k] - 1) / above : 1.0 / double(pixels);
+    drawCounts(total - pixels, plan);
+    for (size_t k = 0; k < pixels; ++k) {
+        plan->counts[k] += 1;
+        alpha_[k] = expected[k] / double(total);  // the channel: the allocation's share
+    }
+    record_->beginIteration(plan->counts, std::move(expected), /*pilot=*/false);
+    adaptSeconds_ += secondsSince(start);
+    return true;
+}
+
+void PmcIpIntegrator::observe(const PixelVisit& visit, const std::vector<Rgb>& values,
+                              const std::vector<Vec2>& offsets) {
     ran_.store(true, std::memory_order_relaxed);
-    const size_t k = size_t(visit.y) * width_ + visit.x;
-    PixelState& p = pixels_[k];
-    double sum[3] = {0, 0, 0};
-    for (const Rgb& v : values) {
-        const double y = v.luminance();
-        p.luminanceSum += y;
-        p.luminanceSquares += y * y;
-        for (int c = 0; c < 3; ++c)
-            sum[c] += v[c];
-    }
-    const double n = double(values.size());
-    for (int c = 0; c < 3; ++c) {
-        p.iterationSum[c] += (sum[c] - n * p.control[c]) * sampleWeight_[k];
-        p.rgbSum[c] += sum[c];
-    }
-    p.samples += uint32_t(values.size());
+    record_->record(size_t(visit.y) * width_ + visit.x, values, offsets);
 }
 
 void PmcIpIntegrator::completeIteration() {
-    if (!currentIterationRan()) {
+    if (!currentIterationRan() || pilot_) {
         planned_ = false;
         return;
     }
-    for (PixelState& p : pixels_)
-        for (int c = 0; c < 3; ++c) {
-            const double estimate = p.control[c] + p.iterationSum[c];
-            p.estimateSum[c] += estimate;
-            p.estimateSquares[c] += estimate * estimate;
-            p.iterationSum[c] = 0;
-        }
+    if (settings_.image == ImageEstimate::Iterations) {
+        const std::vector<Rgb> e = record_->iterationEstimate(record_->iterations() - 1, control_);
+        for (size_t k = 0; k < e.size(); ++k)
+            for (int c = 0; c < 3; ++c) {
+                estimates_[k].sum[c] += e[k][c];
+                estimates_[k].squares[c] += double(e[k][c]) * e[k][c];
+            }
+    }
     ++iterationsDone_;
     planned_ = false;
 }
 
-PixelEstimates PmcIpIntegrator::pixelEstimates() const {
-    const int t = completedIterations();
-    // One iteration (the initial image) is the film's mean.
-    if (settings_.image == ImageEstimate::Pooled || t <= 1) return {};
-    const bool current = currentIterationRan();  // not yet added up: the render just ended
+void PmcIpIntegrator::finish() {
+    const Clock::time_point start = Clock::now();
+    completeIteration();
+    image_ = pixelEstimates();
+    adaptSeconds_ += secondsSince(start);
+}
+
+PixelEstimates PmcIpIntegrator::iterationsImage() const {
+    // The last iteration may have run without being added up (a render that ended without
+    // asking the schedule again).
+    const bool current = currentIterationRan() && !pilot_;
+    const int t = iterationsDone_ + (current ? 1 : 0);
+    std::vector<Rgb> last;
+    if (current) last = record_->iterationEstimate(record_->iterations() - 1, control_);
     PixelEstimates out;
-    out.values.resize(pixels_.size());
-    out.variances.resize(pixels_.size());
-    for (size_t k = 0; k < pixels_.size(); ++k) {
-        const PixelState& p = pixels_[k];
+    out.values.resize(estimates_.size());
+    out.variances.resize(estimates_.size());
+    for (size_t k = 0; k < estimates_.size(); ++k) {
         float mean[3], variance[3];
         for (int c = 0; c < 3; ++c) {
-            const double e = current ? p.control[c] + p.iterationSum[c] : 0.0;
-            const double sum = p.estimateSum[c] + e, squares = p.estimateSquares[c] + e * e;
+            const double e = current ? last[k][c] : 0.0;
+            const double sum = estimates_[k].sum[c] + e;
+            const double squares = estimates_[k].squares[c] + e * e;
             const double m = sum / t;
             mean[c] = static_cast<float>(m);
-            // The spread of the iterations' estimates; one iteration, the samples' own.
-            variance[c] = static_cast<float>(
-                t > 1 ? std::max(0.0, squares - t * m * m) / double(t - 1) / double(t) : 0.0);
+            // The spread of the iterations' estimates.
+            variance[c] =
+                static_cast<float>(std::max(0.0, squares - t * m * m) / double(t - 1) / double(t));
         }
         out.values[k] = Rgb(mean[0], mean[1], mean[2]);
         out.variances[k] = Rgb(variance[0], variance[1], variance[2]);
     }
     return out;
+}
+
+PixelEstimates PmcIpIntegrator::pixelEstimates() const {
+    if (!image_.values.empty()) return image_;
+    if (!record_ || record_->iterations() == 0) return {};
+    const int completed = iterationsDone_ + (currentIterationRan() && !pilot_ ? 1 : 0);
+    // One iteration (the initial image, or a static allocation) is its samples pooled.
+    if (settings_.image == ImageEstimate::Pooled || completed <= 1) return record_->pooledImage();
+    return iterationsImage();
 }
 
 std::vector<AuxiliaryChannel> PmcIpIntegrator::auxiliaryChannels() const {
@@ -187,7 +249,8 @@ std::vector<AuxiliaryChannel> PmcIpIntegrator::auxiliaryChannels() const {
                            "|P| alpha of the last iteration (1: a uniform share of its samples)",
                            std::vector<float>(alpha_.size())};
     AuxiliaryChannel variance{"pmc.variance",
-                              "per-sample luminance variance the last alpha came from",
+                              "per-sample luminance variance the last alpha came from, over the "
+                              "samples within each pixel's filter support",
                               std::vector<float>(variance_.size())};
     for (size_t k = 0; k < alpha_.size(); ++k) {
         alpha.values[k] = static_cast<float>(alpha_[k] * double(alpha_.size()));

@@ -31,6 +31,14 @@ std::unique_ptr<SampleIntegrator> readPixelIntegrator(ObjectReader& json,
 
 BuiltIntegrator makePmcIp(ObjectReader& json, const IntegratorContext& context) {
     PmcIpSettings s;
+    s.knownVarianceSpp =
+        static_cast<uint32_t>(json.getInt("known_variance_spp", 0, Range::closed(0, 1 << 16)));
+    if (s.knownVarianceSpp > 0) {
+        // The static allocation has no iterations to adapt.
+        for (const char* key : {"initial_spp", "iteration_spp", "epsilon"})
+            if (json.has(key))
+                json.fail(key, "does not apply with known_variance_spp (a static allocation)");
+    }
     s.initialSpp = static_cast<uint32_t>(json.getInt("initial_spp", 2, Range::closed(2, 1 << 16)));
     s.iterationSpp =
         static_cast<uint32_t>(json.getInt("iteration_spp", 4, Range::closed(1, 1 << 16)));

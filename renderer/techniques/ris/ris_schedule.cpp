@@ -67,7 +67,7 @@ RisSchedule::RisSchedule(RisIntegrator& integrator, const ScheduleInputs& in)
       width_(in.width),
       height_(in.height),
       grid_(in.width, in.height),
-      passes_(in.scene, integrator, in.width, in.height, in.spp, in.timeLimit) {}
+      passes_(in.scene, integrator, in.width, in.height, in.spp, in.timeLimit, in.splattingFilm()) {}
 
 void RisSchedule::addTally(const CostTally& tally) const {
     std::lock_guard lock(mutex_);

@@ -44,8 +44,9 @@ void TaisPixels::render(const PixelVisit& visit, PixelWork& work) {
     const uint32_t pixel =
         uint32_t(visit.y) * uint32_t(scene_.camera().width()) + uint32_t(visit.x);
     for (uint32_t s = visit.first; s < visit.first + visit.count; ++s) {
-        const Rgb value = renderSample(visit.x, visit.y, sampler_.at(pixel, s), work.rays);
-        work.values.push_back(finiteOrZero(value, &work.nonFiniteSamples));
+        const PixelSample sample = sampler_.at(pixel, s);
+        const Rgb value = renderSample(visit.x, visit.y, sample, work.rays);
+        work.add(finiteOrZero(value, &work.nonFiniteSamples), scene_.camera(), sample);
     }
     if (tais_.settings().contributionFilter) filterMaximumContribution(work.values);  // line 21
     temporary_.addFinishedTo(maps_, tais_.settings().worldFloorShare);  // lines 22–24

@@ -55,7 +55,8 @@ class BandHook final : public PixelRenderer {
         for (uint32_t s = v.first; s < v.first + v.count; ++s) {
             uint32_t samples = integrator_.allocate(sigmaP_), drawn = samples;
             SampleMoments moments;
-            Rgb value = render(v, s, samples, work, &moments);
+            PixelSample sample = sampler_.at(pixelIndex(v, width_), s);
+            Rgb value = render(v, sample, samples, work, &moments);
             double sigma = moments.standardDeviation();
             bool again = false;
             if (rerender && sigma > sigmaP_ + sigmaAverage) {
@@ -65,22 +66,21 @@ class BandHook final : public PixelRenderer {
                 samples = integrator_.allocate(sigmaP_);
                 drawn += samples;
                 moments = {};
-                value = render(v, spp_ + s, samples, work, &moments);
+                sample = sampler_.at(pixelIndex(v, width_), spp_ + s);
+                value = render(v, sample, samples, work, &moments);
                 sigma = moments.standardDeviation();
                 again = true;
             }
-            work.values.push_back(value);
+            work.add(value, scene_.camera(), sample);
             integrator_.recordPixel(v.x, v.y, drawn, again);
             sigmaP_ = 0.75 * sigmaP_ + 0.25 * sigma;  // eq. (8)
         }
     }
 
   private:
-    Rgb render(const PixelVisit& v, uint32_t sampleIndex, uint32_t samples, PixelWork& work,
+    Rgb render(const PixelVisit& v, const PixelSample& sample, uint32_t samples, PixelWork& work,
                SampleMoments* moments) {
-        return integrator_.estimate(scene_, v.x, v.y,
-                                    sampler_.at(pixelIndex(v, width_), sampleIndex), samples,
-                                    work.rays, moments);
+        return integrator_.estimate(scene_, v.x, v.y, sample, samples, work.rays, moments);
     }
 
     const TwoStageIntegrator& integrator_;
