@@ -102,13 +102,18 @@ TEST(ReconstructionFilter, MitchellIsPbrtV1s) {
         EXPECT_NEAR(f.weight1D(-row.d), row.weight, 1e-15) << -row.d;
     }
     // The 2-D weight is the product (pbrt-v1's Evaluate(x, y)).
-    std::array<double, ReconstructionFilter::kMaxTaps> wx, wy;
+    ReconstructionFilter::Taps wx, wy;
     f.taps(0.5f, &wx);  // a sample at a pixel centre: offsets −2, −1, 0, 1, 2 to the centres
     f.taps(0.0f, &wy);  // on a pixel's edge: −1.5, −0.5, 0.5, 1.5, 2.5
-    EXPECT_NEAR(wx[2] * wy[2], 8.0 / 9 * 77.0 / 144, 1e-15);
-    EXPECT_NEAR(wx[1] * wy[0], 1.0 / 18 * -5.0 / 144, 1e-15);
-    EXPECT_EQ(wx[0], 0.0);
-    EXPECT_EQ(wy[4], 0.0);
+    EXPECT_NEAR(wx.weight[2] * wy.weight[2], 8.0 / 9 * 77.0 / 144, 1e-15);
+    EXPECT_NEAR(wx.weight[1] * wy.weight[0], 1.0 / 18 * -5.0 / 144, 1e-15);
+    // Only the centres within the radius: −1, 0, 1 (±2 is on the edge, weight 0), and
+    // −1.5 … 1.5.
+    EXPECT_EQ(wx.first, 1);
+    EXPECT_EQ(wx.last, 3);
+    EXPECT_EQ(wy.first, 0);
+    EXPECT_EQ(wy.last, 3);
+    EXPECT_EQ(wy.weight[4], 0.0);  // 2.5 away
 }
 
 // pbrt-v1's Gaussian (filters/gaussian.cpp) is exp(−α d²) − exp(−α r²) per axis; ours is that

@@ -1,10 +1,10 @@
 """PMC fig. 4: PMC-IP on the Buddha (configs/experiments/pmc/tab1_buddha.json, at its profile's
-resolution, seed 0). Top: the uniform 2-spp initial image, the α image PMC-IP computes from it
-(|P|·α: 1 is a uniform share, log scale), PMC-IP after two iterations (2 + 4 + 4) and uniform
-10 spp. Bottom: the variance of each final image's pixels (PMC-IP's from the spread of its
-iterations' estimates, uniform's from its samples), on one log scale. PMC-IP's unbiased image
-has negative pixels where a starved pixel's one sample fell below its earlier mean (shown
-black), and bright ones where it fell above."""
+resolution, through its pbrt-v1 film and sampling, seed 0). Top: the uniform 2-spp initial
+image, the α image PMC-IP computes from it (|P|·α: 1 is a uniform share, log scale; from the
+variance image over each pixel's filter support), PMC-IP after two iterations (2 + 4 + 4, its
+samples pooled through the film: the experiment's `pmc_ip`) and uniform 10 spp. Bottom: the
+variance of each final image's pixels (both from their samples through the film's variance
+estimator), on one log scale."""
 from pathlib import Path
 
 import matplotlib
@@ -40,7 +40,7 @@ def write(profile_name: str) -> list[Path]:
     scale = float(np.percentile(rgb(files["uniform"]), 99))
 
     def display(exr: Path) -> np.ndarray:
-        # The unbiased image has negative pixels (a control variate's overshoot): black here.
+        # Mitchell's negative lobes can leave a pixel slightly negative: black here.
         return shown(rgb(exr), scale)
 
     fig, axes = plt.subplots(2, 4, figsize=(12, 9.5))

@@ -1,5 +1,5 @@
 """PMC fig. 5: the Cornell box's caustic (configs/experiments/pmc/tab1_box.json, at its
-profile's resolution), cropped. Row 1: uniform path tracing at 16, 32, 64 and 128 spp; row 2:
+profile's resolution, through its pbrt-v1 film and sampling), cropped. Row 1: uniform path tracing at 16, 32, 64 and 128 spp; row 2:
 PMC-IP in the figure's schedule (iterations of 4 spp after a 4-spp initial image; "64
 iterations, each averaging 4 spp") after 4, 8, 16 and 32 iterations, the same sample counts,
 our unbiased image (the iterations' estimates averaged); row 3: the same renders' pooled image
@@ -39,7 +39,8 @@ def write(profile_name: str) -> list[Path]:
     uniform, pmc_ip = run.exp.techniques["uniform"], run.exp.techniques["pmc_ip"]
     adaptive = dict(pmc_ip.integrator, initial_spp=4, iteration_spp=4)
     # Each panel: the technique it renders, with that integrator (a variant of its own).
-    panels_of = {"uniform": (uniform, uniform.integrator), "iterations": (pmc_ip, adaptive),
+    panels_of = {"uniform": (uniform, uniform.integrator),
+                 "iterations": (pmc_ip, dict(adaptive, image="iterations")),
                  "pooled": (pmc_ip, dict(adaptive, image="pooled"))}
     renders.check_technique(run.exp, run.profile, pmc_ip, adaptive)
     panels = sorted({p for row in ROWS for p in row if p[0] != "reference"})

@@ -38,21 +38,21 @@ void SplatTile::reset(int x0, int y0, int x1, int y1) {
 
 void SplatTile::add(const ReconstructionFilter& filter, int x, int y, Vec2 offset, const Rgb& value,
                     double scale) {
-    std::array<double, ReconstructionFilter::kMaxTaps> wx, wy;
+    ReconstructionFilter::Taps wx, wy;
     filter.taps(offset.x, &wx);
     filter.taps(offset.y, &wy);
     const SplatTerms terms(value);
     const int reach = filter.reach();
-    const int ty0 = std::max(y - reach, y0_), ty1 = std::min(y + reach + 1, y1_);
-    const int tx0 = std::max(x - reach, x0_), tx1 = std::min(x + reach + 1, x1_);
+    // The centres within the radius, inside the tile (which holds the image's part of it).
+    const int ty0 = std::max(y - reach + wy.first, y0_),
+              ty1 = std::min(y - reach + wy.last + 1, y1_);
+    const int tx0 = std::max(x - reach + wx.first, x0_),
+              tx1 = std::min(x - reach + wx.last + 1, x1_);
     for (int ty = ty0; ty < ty1; ++ty) {
-        const double rowWeight = wy[size_t(ty - y + reach)] * scale;
-        if (rowWeight == 0) continue;
+        const double rowWeight = wy.weight[size_t(ty - y + reach)] * scale;
         SplatSums* row = &sums_[size_t(ty - y0_) * size_t(x1_ - x0_)];
-        for (int tx = tx0; tx < tx1; ++tx) {
-            const double w = wx[size_t(tx - x + reach)] * rowWeight;
-            if (w != 0) row[tx - x0_].add(w, terms);
-        }
+        for (int tx = tx0; tx < tx1; ++tx)
+            row[tx - x0_].add(wx.weight[size_t(tx - x + reach)] * rowWeight, terms);
     }
 }
 

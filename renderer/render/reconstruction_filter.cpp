@@ -93,11 +93,32 @@ double ReconstructionFilter::integral1D(double a, double b) const {
     return area(b) - area(a);
 }
 
-void ReconstructionFilter::taps(float offset, std::array<double, kMaxTaps>* taps) const {
+void ReconstructionFilter::taps(float offset, Taps* taps) const {
+    if (isBox()) {
+        taps->first = taps->last = 0;
+        taps->weight[0] = 1;
+        return;
+    }
     // Tap i is the centre of pixel (own − reach + i), at −reach + i + ½ from the own pixel's
-    // corner; the sample lies at `offset` from it.
-    for (int i = 0; i <= 2 * reach_; ++i)
-        (*taps)[i] = weight1D(double(offset) + reach_ - i - 0.5);
+    // corner; the sample lies at d_i = offset + reach − i − ½ from it. Taps outside the
+    // radius are 0; first and last bound the others. One loop per type: this runs twice per
+    // sample a splatting film takes.
+    const double centre = double(offset) + reach_ - 0.5, r = settings_.radius;
+    const int n = 2 * reach_ + 1;
+    taps->first = n;
+    taps->last = -1;
+    const bool isMitchell = settings_.type == FilterType::Mitchell;
+    for (int i = 0; i < n; ++i) {
+        const double d = centre - i;
+        const bool inside = std::abs(d) < r;
+        taps->weight[size_t(i)] = isMitchell ? scale_ * mitchell(scale_ * std::abs(d))
+                                  : inside   ? weight1D(d)
+                                             : 0.0;
+        if (inside) {
+            taps->first = std::min(taps->first, i);
+            taps->last = i;
+        }
+    }
 }
 
 nlohmann::json ReconstructionFilter::parameters() const {

@@ -48,9 +48,14 @@ class ReconstructionFilter {
     double integral1D(double a, double b) const;
 
     // The weights one axis of a sample gives: the sample lies at `pixel` + `offset` (offset in
-    // [0, 1)); taps[i] is the weight of the pixel centre pixel − reach() + i + ½, for
-    // i < 2 reach() + 1.
-    void taps(float offset, std::array<double, kMaxTaps>* taps) const;
+    // [0, 1)); weight[i] is the weight of the pixel centre pixel − reach() + i + ½, for
+    // i < 2 reach() + 1, and only [first, last] can be non-zero (the centres within the
+    // radius), so a splat needs no test per tap.
+    struct Taps {
+        std::array<double, kMaxTaps> weight;
+        int first = 0, last = 0;
+    };
+    void taps(float offset, Taps* taps) const;
 
     // The settings as written in the output metadata (and read back by the loader).
     nlohmann::json parameters() const;

@@ -52,15 +52,15 @@ void SampleRecord::record(size_t pixel, const std::vector<Rgb>& values,
     }
     // The variance sums: this pixel's samples towards each target within reach.
     PositiveSums* sums = &positive_[pixel * size_t(taps_) * size_t(taps_)];
-    std::array<double, ReconstructionFilter::kMaxTaps> wx, wy;
+    ReconstructionFilter::Taps wx, wy;
     for (size_t i = 0; i < values.size(); ++i) {
         filter_.taps(offsets[i].x, &wx);
         filter_.taps(offsets[i].y, &wy);
         const double y = values[i].luminance();
-        for (int ty = 0; ty < taps_; ++ty) {
-            if (!(wy[size_t(ty)] > 0)) continue;
-            for (int tx = 0; tx < taps_; ++tx) {
-                const double w = std::max(0.0, wx[size_t(tx)]) * wy[size_t(ty)];
+        for (int ty = wy.first; ty <= wy.last; ++ty) {
+            if (!(wy.weight[size_t(ty)] > 0)) continue;
+            for (int tx = wx.first; tx <= wx.last; ++tx) {
+                const double w = std::max(0.0, wx.weight[size_t(tx)]) * wy.weight[size_t(ty)];
                 if (w == 0) continue;
                 PositiveSums& s = sums[ty * taps_ + tx];
                 s.weight += w;
