@@ -12,6 +12,7 @@
 
 #include "config/config_error.h"
 #include "render/uniform_passes.h"
+#include "sampling/hash.h"
 #include "support/chi2.h"
 #include "support/scene_testing.h"
 
@@ -268,12 +269,63 @@ TEST(SplattingFilm, ThePassPlanIsFixed) {
     for (double seconds : {1e-6, 10.0})
         EXPECT_EQ(passes(100, 0, RoundTiming{0, 0, seconds, 0}),
                   (std::vector<uint32_t>{1, 2, 4, 8, 16, 16, 16, 16, 16, 5}));
-    // 0.05 s per pass of any size, 1 s allowed: the pass that would overrun is cut short and
-    // is the last one.
-    const std::vector<uint32_t> timed = passes(0, 1.0, RoundTiming{0, 1.0, 0.05, 0});
-    ASSERT_GE(timed.size(), 5u);
-    for (size_t i = 0; i + 1 < timed.size(); ++i)
-        EXPECT_EQ(timed[i], std::min<uint32_t>(1u << std::min<size_t>(i, 4), 16)) << i;
+    // 1/8 s per pass of any size, 7/16 s allowed: after 1 and 2 spp (1/4 s), 3 more fit of
+    // the 4 planned; that pass is cut short and is the last (another would still fit 1 spp).
+    EXPECT_EQ(passes(0, 0.4375, RoundTiming{0, 0.4375, 0.125, 0}),
+              (std::vector<uint32_t>{1, 2, 3}));
+}
+
+// Splats land where the filter says, across tiles and rounds: synthetic samples splatted by
+// three units whose tiles overlap, over two rounds, give every pixel the brute-force
+// Σ w L / Σ w over all samples, and its variance.
+TEST(SplattingFilm, EveryPixelIsTheSumOverTheSamplesWithinReach) {
+    constexpr int kW = 37, kH = 23;
+    for (const FilterSettings& settings : {mitchell(), mitchell(1.5), gaussian(2.6, 1)}) {
+        const ReconstructionFilter filter(settings);
+        Film film(kW, kH, filter);
+        struct Sample {
+            int x, y;
+            Vec2 offset;
+            Rgb value;
+        };
+        std::vector<Sample> all;
+        const int edges[] = {0, 12, 25, kW};  // the units' columns
+        for (uint32_t round = 0; round < 2; ++round) {
+            film.beginRound(3);
+            for (size_t unit = 0; unit < 3; ++unit) {
+                SplatTile& tile = film.openTile(unit, edges[unit], 0, edges[unit + 1], kH);
+                for (int y = 0; y < kH; ++y)
+                    for (int x = edges[unit]; x < edges[unit + 1]; ++x)
+                        for (uint32_t s = 0; s < 3; ++s) {
+                            const uint64_t h = hashKeys(round, uint64_t(y * kW + x), s);
+                            const Sample sample{
+                                x, y,
+                                Vec2(toUnitFloat(uint32_t(h)), toUnitFloat(uint32_t(h >> 32))),
+                                Rgb(float(h % 97) / 10.0f, float(h % 13), 0.5f)};
+                            tile.add(filter, x, y, sample.offset, sample.value);
+                            film.countSample(x, y);
+                            all.push_back(sample);
+                        }
+            }
+            film.endRound();
+        }
+        for (int ty = 0; ty < kH; ++ty)
+            for (int tx = 0; tx < kW; ++tx) {
+                SplatSums sums;
+                for (const Sample& s : all)
+                    sums.add(filter.weight1D(double(s.x) + s.offset.x - tx - 0.5) *
+                                 filter.weight1D(double(s.y) + s.offset.y - ty - 0.5),
+                             s.value);
+                const Rgb expected = sums.estimate(), variance = sums.varianceOfEstimate();
+                const Rgb m = film.mean(tx, ty), v = film.varianceOfMean(tx, ty);
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(m[c], expected[c], 1e-5f * (1 + std::abs(expected[c])))
+                        << filterName(settings.type) << " at " << tx << ", " << ty;
+                    EXPECT_NEAR(v[c], variance[c], 1e-4f * (1 + variance[c])) << tx << ", " << ty;
+                }
+                EXPECT_EQ(film.sampleCount(tx, ty), 6u);
+            }
+    }
 }
 
 // The ratio of the variance channel, averaged over the pixels, to the pixels' spread over seeds.
@@ -304,11 +356,12 @@ double varianceChannelOverSpread(const LoadedScene& scene) {
 // spread of the pixel over seeds. Where the image is flat and only the samples' own noise
 // varies (a diffuse plane under a constant environment, lit by MIS), the ratio of the two,
 // averaged over pixels, is near one for every filter: each pixel's spread is a χ² of 199
-// degrees of freedom (relative s.e. 0.10), far tighter over 480 pixels, so ±10 % leaves room
-// for the delta method's own O(1/n) error at 8 spp. Where the image varies within the filter's
-// support the channel overestimates: it treats the samples as spread independently over the
-// support, while each pixel gets its own 8 (stratified by pixel): on the Cornell spheres it
-// must not underestimate.
+// degrees of freedom (relative s.e. 0.10); pixels within a filter's support share samples, so
+// the 480 pixels are about 30 independent ones (480 / 16), which leaves a relative s.e. near
+// 0.02: ±10 % is 5 of them, and room for the delta method's own O(1/n) error at 8 spp. Where the
+// image varies within the filter's support the channel overestimates: it treats the samples as
+// spread independently over the support, while each pixel gets its own 8 (stratified by pixel): on
+// the Cornell spheres it must not underestimate.
 TEST(SplattingFilm, TheVarianceChannelPredictsTheSpreadOverSeeds) {
     const std::string plane = R"({"render": {"resolution": [24, 20]},
         "integrator": {"type": "direct"},

@@ -6,9 +6,13 @@
 // pixel is the mean of its own samples, and nothing is splatted.
 //
 // The 1-D weights are normalised so that each integrates to 1 over the line; pbrt-v1's Mitchell
-// filter of radius 2 is exactly this one, and any other radius differs by a constant factor,
-// which Σ w·L / Σ w cancels. A normalised filter lets an estimator that knows its sampling
-// density use Σ w·L / q without dividing by Σ w (PMC-IP's unbiased image).
+// filter of radius 2 is this function exactly, and any other radius differs by a constant
+// factor, which Σ w·L / Σ w cancels. A normalised filter lets an estimator that knows its
+// sampling density use Σ w·L / q without dividing by Σ w (PMC-IP's unbiased image). pbrt-v1's
+// film differs in two details we do not copy: it looks weights up in a 16 × 16 table of the
+// filter at cell centres (we evaluate it), and it clamps a pixel's negative channels to 0 when
+// writing (we keep the signed estimate: a clamp would bias it, and our references are formed
+// the same way).
 #pragma once
 
 #include <array>

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <climits>
+#include <cstdint>
 #include <mutex>
 #include <stdexcept>
 

@@ -3,6 +3,7 @@
 // thread count, and bad settings.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -172,8 +173,8 @@ BlockMeans reference(const std::string& filter) {
                       2048, 1000, kReferenceRenders);
 }
 
-// The unbiased cases (4: MIS and PMC-HI with feedback, box; iterations and known variance
-// through a Mitchell filter) × channels × (image + blocks).
+// The unbiased cases (4: MIS, PMC-HI with feedback and the known-variance allocation through the
+// box; the iterations' image through a Mitchell filter) × channels × (image + blocks).
 int tests() {
     return 4 * 3 * (1 + (kSize / kBlock) * (kSize / kBlock));
 }
@@ -369,6 +370,25 @@ TEST(PmcIpKnownVariance, AllocatesTheSppWithASampleEachAndNoPilotSamples) {
     EXPECT_EQ(one.stats.spp, 6u);
 }
 
+// The static allocation renders one iteration at once: its image is pooled, and a time limit
+// cannot stop it part-way; both are refused naming the key.
+TEST(PmcIpKnownVariance, AnIterationsImageAndATimeLimitAreRefused) {
+    try {
+        checkerFloor({R"(/integrator={"type":"pmc_ip","known_variance_spp":8,"image":"iterations",)"
+                      R"("integrator":{"type":"direct"}})"});
+        FAIL() << "an iterations image was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/integrator/image");
+    }
+    const LoadedScene scene = checkerFloor({knownVariance("pooled")});
+    try {
+        scene.schedule(scene.scheduleInputs(kMaxSpp, 1.0));
+        FAIL() << "a time limit was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.pointer(), "/integrator/known_variance_spp");
+    }
+}
+
 // The static allocation minimises Σ σ²/(n tvi) with Σ n = N and n ≥ 1: where n > 1, n ∝ σ/√tvi
 // (one multiplier λ); where n = 1, λ σ/√tvi ≤ 1 (Lagrange with the bound's multiplier).
 TEST(PmcIpKnownVariance, TheStaticAllocationIsTheWaterFillingOptimum) {
@@ -423,6 +443,60 @@ TEST(PmcIpDeterminism, ImagesAndCountsAreIdenticalOnOneAndTwoThreads) {
                 varied += one.film.sampleCount(x, y) != 14;
             }
         EXPECT_GT(varied, kSize * kSize / 4) << "the allocation should vary between pixels";
+    }
+}
+
+// Forwards to a schedule, and sets `cancel` once `rounds` rounds have been planned: the render
+// loop then stops before running the last round it planned (a Ctrl-C at that moment).
+class CancelAfterPlanning final : public RenderSchedule {
+  public:
+    CancelAfterPlanning(RenderSchedule& inner, int rounds, std::atomic<bool>& cancel)
+        : inner_(inner), rounds_(rounds), cancel_(cancel) {}
+    bool supportsTimeLimit() const override { return inner_.supportsTimeLimit(); }
+    uint64_t plannedSamples() const override { return inner_.plannedSamples(); }
+    bool nextRound(const Film& film, const RoundTiming& timing, Round* round) override {
+        const bool more = inner_.nextRound(film, timing, round);
+        if (++planned_ == rounds_) cancel_ = true;
+        return more;
+    }
+    void unitVisits(size_t unit, std::vector<PixelVisit>* visits) const override {
+        inner_.unitVisits(unit, visits);
+    }
+    std::unique_ptr<PixelRenderer> pixelRenderer(const Sampler& sampler) const override {
+        return inner_.pixelRenderer(sampler);
+    }
+
+  private:
+    RenderSchedule& inner_;
+    int rounds_, planned_ = 0;
+    std::atomic<bool>& cancel_;
+};
+
+// A render cancelled after planning its first adaptive iteration, before running it, keeps the
+// image of the iterations that ran: the pooled image of the initial 2 spp, bit for bit that of a
+// render of 2 spp (the planned iteration's empty samples are not in it).
+TEST(PmcIpCancelled, TheImageHoldsOnlyTheIterationsThatRan) {
+    const LoadedScene scene = checkerFloor({pmcIp("pooled"), kMitchell});
+    std::atomic<bool> cancel{false};
+    RenderOptions options;
+    options.seed = 4;
+    options.cancel = &cancel;
+    options.samplerSetSize = 10;
+    Film film(kSize, kSize, scene.filmFilter());
+    const std::unique_ptr<RenderSchedule> pmc = scene.schedule(scene.scheduleInputs(10, 0));
+    CancelAfterPlanning schedule(*pmc, 2, cancel);
+    const RenderStats stats = render(schedule, options, film);
+    ASSERT_TRUE(stats.interrupted);
+    ASSERT_TRUE(stats.complete);
+    const PixelEstimates cancelled = scene.integrator->pixelEstimates();
+    Film two(kSize, kSize, scene.filmFilter());
+    options.cancel = nullptr;
+    render(*scene.schedule(scene.scheduleInputs(2, 0)), options, two);
+    const PixelEstimates initial = scene.integrator->pixelEstimates();
+    ASSERT_EQ(cancelled.values.size(), size_t(kSize * kSize));
+    for (size_t k = 0; k < cancelled.values.size(); ++k) {
+        ASSERT_EQ(cancelled.values[k], initial.values[k]) << k;
+        ASSERT_EQ(cancelled.variances[k], initial.variances[k]) << k;
     }
 }
 

@@ -58,6 +58,10 @@ std::unique_ptr<RenderSchedule> PmcIpIntegrator::schedule(const ScheduleInputs& 
     const uint64_t pixels = uint64_t(in.width) * uint64_t(in.height);
     const uint32_t initial = settings_.initialSpp, step = settings_.iterationSpp;
     if (settings_.knownVarianceSpp > 0) {
+        if (in.timeLimit > 0)
+            throw ConfigError("/integrator/known_variance_spp",
+                              "the static allocation spreads the spp it is given at once; "
+                              "--time-limit cannot stop it part-way (use --spp)");
         maxIterations_ = 1;
     } else {
         if (in.spp < initial)
@@ -170,6 +174,10 @@ bool PmcIpIntegrator::allocateKnownVariance(int iteration, IteratedAllocation::P
     for (size_t k = 0; k < pixels; ++k) {
         plan->counts[k] += 1;
         alpha_[k] = expected[k] / double(total);  // the channel: the allocation's share
+        // Kept samples must stay below the pilot's indices (from kMaxSpp on).
+        if (plan->counts[k] > kMaxSpp)
+            throw std::runtime_error("pmc_ip: pixel " + std::to_string(k) +
+                                     " would get more than 2^24 samples");
     }
     record_->beginIteration(plan->counts, std::move(expected), /*pilot=*/false);
     adaptSeconds_ += secondsSince(start);
@@ -236,10 +244,16 @@ PixelEstimates PmcIpIntegrator::iterationsImage() const {
 
 PixelEstimates PmcIpIntegrator::pixelEstimates() const {
     if (!image_.values.empty()) return image_;
-    if (!record_ || record_->iterations() == 0) return {};
+    if (!record_) return {};
+    // A render cancelled between planning an iteration and running it leaves that iteration
+    // in the record without samples: it is not part of the image.
+    const bool unrun = planned_ && !pilot_ && !ran_.load(std::memory_order_relaxed);
+    const size_t recorded = record_->iterations() - (unrun ? 1 : 0);
+    if (recorded == 0) return {};
     const int completed = iterationsDone_ + (currentIterationRan() && !pilot_ ? 1 : 0);
     // One iteration (the initial image, or a static allocation) is its samples pooled.
-    if (settings_.image == ImageEstimate::Pooled || completed <= 1) return record_->pooledImage();
+    if (settings_.image == ImageEstimate::Pooled || completed <= 1)
+        return record_->pooledImage(recorded);
     return iterationsImage();
 }
 

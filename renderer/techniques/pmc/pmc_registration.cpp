@@ -43,9 +43,15 @@ BuiltIntegrator makePmcIp(ObjectReader& json, const IntegratorContext& context) 
     s.iterationSpp =
         static_cast<uint32_t>(json.getInt("iteration_spp", 4, Range::closed(1, 1 << 16)));
     s.epsilon = json.getNumber("epsilon", 0.01, Range::open(0, 1));
-    s.image = json.getChoice("image", {"iterations", "pooled"}, "iterations") == "pooled"
+    // The static allocation renders one iteration: its image pools it.
+    const char* image = s.knownVarianceSpp > 0 ? "pooled" : "iterations";
+    s.image = json.getChoice("image", {"iterations", "pooled"}, image) == "pooled"
                   ? ImageEstimate::Pooled
                   : ImageEstimate::Iterations;
+    if (s.knownVarianceSpp > 0 && s.image != ImageEstimate::Pooled)
+        json.fail("image",
+                  "the static allocation (known_variance_spp) renders one iteration, "
+                  "whose image is \"pooled\"");
     auto integrator = std::make_unique<PmcIpIntegrator>(readPixelIntegrator(json, context), s);
     PmcIpIntegrator* raw = integrator.get();
     return BuiltIntegrator{std::move(integrator),

@@ -214,8 +214,8 @@ std::vector<Rgb> SampleRecord::iterationEstimate(size_t t, const std::vector<Rgb
     return controlled(sums, control);
 }
 
-PixelEstimates SampleRecord::pooledImage() const {
-    std::vector<size_t> all(iterations_.size());
+PixelEstimates SampleRecord::pooledImage(size_t iterations) const {
+    std::vector<size_t> all(std::min(iterations, iterations_.size()));
     for (size_t t = 0; t < all.size(); ++t)
         all[t] = t;
     std::vector<SplatSums> sums;

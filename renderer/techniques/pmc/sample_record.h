@@ -66,8 +66,9 @@ class SampleRecord {
     // Iteration t's estimate c + (Σ w L / q − c Σ w / q) / W per pixel, c = control[pixel]
     // (ignored for the first iteration, which is split in two halves instead).
     std::vector<Rgb> iterationEstimate(size_t t, const std::vector<Rgb>& control) const;
-    // The pooled image and its variance.
-    PixelEstimates pooledImage() const;
+    // The pooled image and its variance, over the first `iterations` iterations (all of them by
+    // default).
+    PixelEstimates pooledImage(size_t iterations = SIZE_MAX) const;
 
   private:
     struct StoredSample {
