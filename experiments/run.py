@@ -143,7 +143,7 @@ def cmd_overhead(args: argparse.Namespace) -> int:
 
 def cmd_calibrate(args: argparse.Namespace) -> int:
     exp = config.load(args.config)
-    results_file = paths.results_file(exp, args.profile)
+    results_file = exp.results_file(args.profile)
     if not results_file.exists():
         raise HarnessFailure(f"no results at {paths.relative(results_file)}: run it first")
     results = json.loads(results_file.read_text())

@@ -64,7 +64,7 @@ def render_time(binary: Path, scene_args: list[object], spp: int, seed: int,
 
 def experiment_ratio(exp: config.Experiment, profile: config.Profile) -> float | None:
     """TAIS over path_mis in mean render time at the table spp, from the experiment's summary."""
-    results = paths.results_file(exp, profile.name)
+    results = exp.results_file(profile.name)
     if not results.exists():
         return None
     mean_time = {e["technique"]: e["time"]["mean"]

@@ -161,6 +161,10 @@ class Experiment:
     def primary_metric(self) -> str:
         return self.metrics[0]
 
+    def results_file(self, profile_name: str) -> Path:
+        """results/<paper>/<figure>[.<profile>].json (see paths.suffix)."""
+        return paths.RESULTS / self.paper_name / f"{self.figure}{paths.suffix(profile_name)}.json"
+
 
 def load(file: str | Path) -> Experiment:
     """Loads and validates one experiment config, or a variant merged onto its parent. Raises

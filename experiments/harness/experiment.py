@@ -367,6 +367,6 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         # the profile is split into chunks.
         "cpu_seconds": round(children_cpu_seconds() - cpu_started, 1),
         "parallel_jobs": parallel_jobs(profile, workers)})
-    out = paths.results_file(exp, profile.name)
+    out = exp.results_file(profile.name)
     provenance.write_json_atomically(out, document)
     return out

@@ -3,10 +3,6 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:  # config imports this module
-    from .config import Experiment
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs" / "experiments"
@@ -55,10 +51,6 @@ def suffix(profile_name: str) -> str:
     """File-name suffix of a profile's outputs: none for quick (the committed set), ".full"
     for full, so running the full profile never overwrites the quick one."""
     return "" if profile_name == "quick" else f".{profile_name}"
-
-
-def results_file(exp: Experiment, profile_name: str) -> Path:
-    return RESULTS / exp.paper_name / f"{exp.figure}{suffix(profile_name)}.json"
 
 
 def all_experiment_configs() -> list[Path]:

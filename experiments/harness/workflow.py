@@ -122,7 +122,7 @@ def assemble(exp: Experiment, profile: Profile) -> Path:
         "cpu_seconds": round(math.fsum(j["cpu_seconds"] for j in jobs), 1),
         "parallel_jobs": 1,
         "hosts": sorted({j["host"] for j in jobs})})
-    out = paths.results_file(exp, profile.name)
+    out = exp.results_file(profile.name)
     provenance.write_json_atomically(out, document)
     return out
 
