@@ -6,8 +6,9 @@ proof that a refactoring left every render bit-identical.
   tests/pixel_hashes.py compare HASHES.json  # after it: lists every render that differs
 
 Each render is 32x24 at 4 spp (path, path_mis, the three direct strategies with one and with
-several samples, tais with 8-row bands so that bands and their warm-up rows are exercised, and
-path_mis with each structured sampler). A hash covers every channel of the EXR (radiance,
+several samples, tais with 8-row bands so that bands and their warm-up rows are exercised,
+path_mis with each structured sampler, every technique's estimator under direct and path_mis,
+the techniques' integrators in their deterministic modes, and the scene's own integrator). A hash covers every channel of the EXR (radiance,
 variance, sample count); a render the renderer refuses is recorded by its exit status and
 message, so a changed error shows up too. RENDERER_BINARY names the binary (default
 build/bin/renderer).
@@ -40,6 +41,26 @@ CONFIGURATIONS = {
                             "--set", "/render/sampler=stratified"],
     "path_mis_hammersley": ["--set", '/integrator={"type":"path_mis"}',
                             "--set", "/render/sampler=hammersley"],
+    # The techniques' estimators and integrators (their deterministic modes), and each
+    # scene's own integrator as its file configures it.
+    "as_configured": [],
+    "direct_ris": ["--set", '/integrator={"type":"direct","estimator":'
+                            '{"type":"ris","candidates":4,"samples":2}}'],
+    "direct_ris_proxy": ["--set", '/integrator={"type":"direct","estimator":'
+                                  '{"type":"ris","candidates":4,"source":"light_proxy"}}'],
+    "direct_two_stage": ["--set", '/integrator={"type":"direct","estimator":'
+                                  '{"type":"two_stage","samples":4}}'],
+    "direct_pmc_hi": ["--set", '/integrator={"type":"direct","estimator":{"type":"pmc_hi"}}'],
+    "path_mis_ris": ["--set", '/integrator={"type":"path_mis","estimator":'
+                              '{"type":"ris","candidates":3}}'],
+    "path_mis_pmc_hi": ["--set", '/integrator={"type":"path_mis","estimator":'
+                                 '{"type":"pmc_hi","samples":6}}'],
+    "ris_fixed": ["--set", '/integrator={"type":"ris","mode":"fixed","candidates":4,'
+                           '"samples":2}'],
+    "two_stage_variable": ["--set", '/integrator={"type":"two_stage","samples":4,'
+                                    '"allocation":"variable","pilot_pixels":16,"band_rows":8}'],
+    "pmc_ip": ["--set", '/integrator={"type":"pmc_ip","initial_spp":2,"iteration_spp":1,'
+                        '"integrator":{"type":"path_mis"}}'],
 }
 
 
