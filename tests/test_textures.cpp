@@ -30,16 +30,18 @@ ShadingContext at(float u, float v) {
 TexturePtr<Rgb> rgbTexture(const Json& value, Range range = Range::unit(),
                            const AssetResolver& assets = kNoAssets) {
     const Json object = {{"p", value}};
-    ObjectReader j(object, "/m");
-    TexturePtr<Rgb> texture = readRgbTexture(j, "p", Rgb(0.0f), range, assets);
+    const KeyTable keys{"test", "", {key("p").colourTexture(range).byDefault(0.0)}};
+    ObjectReader j(object, "/m", keys);
+    TexturePtr<Rgb> texture = readRgbTexture(j, "p", assets);
     j.finish();
     return texture;
 }
 TexturePtr<float> floatTexture(const Json& value, Range range = Range::unit(),
                                const AssetResolver& assets = kNoAssets) {
     const Json object = {{"p", value}};
-    ObjectReader j(object, "/m");
-    TexturePtr<float> texture = readFloatTexture(j, "p", 0.0f, range, assets);
+    const KeyTable keys{"test", "", {key("p").numberTexture(range).byDefault(0.0)}};
+    ObjectReader j(object, "/m", keys);
+    TexturePtr<float> texture = readFloatTexture(j, "p", assets);
     j.finish();
     return texture;
 }

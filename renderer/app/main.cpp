@@ -1,10 +1,11 @@
-// The renderer's command line. Subcommands: render, check, serve.
+// The renderer's command line. Subcommands: render, check, serve, keys.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "app/command_line.h"
 #include "app/render_command.h"
 #include "app/serve_command.h"
+#include "loader/scene_keys.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"Research renderer for Monte Carlo importance-sampling reproductions"};
@@ -27,6 +28,11 @@ int main(int argc, char** argv) {
     serve->add_option("--cached-scenes", serveOptions.cachedScenes, "built scenes kept")
         ->check(CLI::Range(0, 64));
 
+    CLI::App* keys = app.add_subcommand(
+        "keys",
+        "print every key a scene file takes (name, kind, range, default, meaning) as JSON: the "
+        "source of configs/README.md's key tables and configs/schema/scene.schema.json");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -36,6 +42,10 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (serve->parsed()) return rr::runServeCommand(serveOptions);
+    if (keys->parsed()) {
+        std::printf("%s\n", rr::sceneKeys().describe().dump(1).c_str());
+        return 0;
+    }
     o.checkOnly = check->parsed();
     return rr::runRenderCommand(o);
 }

@@ -34,8 +34,16 @@ class DirectLightingEstimator {
   public:
     virtual ~DirectLightingEstimator() = default;
     virtual std::string name() const = 0;
-    // Parameters as recorded in the output metadata (merged into the integrator's).
+    // Parameters as recorded in the output metadata (merged into the integrator's):
+    // readParameters() and what the estimator resolved from them.
     virtual nlohmann::json parameters() const = 0;
+    // The keys of its JSON object as the registry read them, with its "type".
+    void setReadParameters(nlohmann::json values) { readParameters_ = std::move(values); }
+    nlohmann::json readParameters() const {
+        nlohmann::json p = readParameters_;
+        p["type"] = name();
+        return p;
+    }
     // Light samples per estimate (0: the estimate is always zero and need not be asked).
     virtual uint32_t lightSamples() const = 0;
     virtual FoundEmission foundEmission() const = 0;
@@ -71,6 +79,7 @@ class DirectLightingEstimator {
 
   private:
     const LightSampleEstimator* lightSampling_ = nullptr;
+    nlohmann::json readParameters_ = nlohmann::json::object();
 };
 
 // The weight of emission found by `scatterSamples` scattering samples of density `scatterPdf`,

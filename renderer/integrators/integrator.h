@@ -54,8 +54,17 @@ class Integrator {
     virtual ~Integrator() = default;
     // The type it is registered under (render/technique_registry.h), as scenes name it.
     virtual std::string name() const = 0;
-    // Parameters as recorded in the output metadata.
+    // Parameters as recorded in the output metadata: readParameters() and what the
+    // integrator resolved from them.
     virtual nlohmann::json parameters() const = 0;
+    // The keys of its JSON object as the registry read them (its table's keys, defaults
+    // filled in), with its "type".
+    void setReadParameters(nlohmann::json values) { readParameters_ = std::move(values); }
+    nlohmann::json readParameters() const {
+        nlohmann::json p = readParameters_;
+        p["type"] = name();
+        return p;
+    }
     // The most draws of one decision a pixel sample makes (DecisionSite::repeatCount).
     virtual uint32_t decisionRepeats() const { return 1; }
     // Called by the loader once the scene is built, before any rendering: an integrator that
@@ -71,6 +80,9 @@ class Integrator {
     // Once the render is done: the pixel estimates when the integrator forms its own image;
     // else empty.
     virtual PixelEstimates pixelEstimates() const { return {}; }
+
+  private:
+    nlohmann::json readParameters_ = nlohmann::json::object();
 };
 
 class SampleIntegrator : public Integrator {

@@ -22,4 +22,7 @@ struct CameraReading {
 
 CameraReading readCamera(ObjectReader& json);
 
+// The keys of the "camera" object.
+const KeyTable& cameraKeys();
+
 }  // namespace rr

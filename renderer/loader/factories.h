@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/json_reader.h"
+#include "config/type_table.h"
 #include "loader/asset_resolver.h"
 #include "math/transform.h"
 #include "render/technique_registry.h"
@@ -40,6 +41,18 @@ std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
 // `worldToRender` (loader/camera_reader.h).
 std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets,
                                  const Transform& worldToRender);
+
+// Each category's types and their key tables (key_table.h), and the tables of the objects
+// inside them.
+using MaterialTypes = TypeTable<Material, const AssetResolver&, const MaterialReferences&>;
+const MaterialTypes& materialTypes();
+std::vector<const KeyTable*> materialPartKeys();  // a Lafortune lobe
+const TypeTable<Shape, const Transform&, const AssetResolver&>& shapeTypes();
+using LightTypes = TypeTable<Light, const AssetResolver&, const Transform&>;
+const LightTypes& lightTypes();
+const KeyTable& mediumKeys();
+const TypeTable<PhaseFunction>& phaseTypes();
+std::vector<const KeyTable*> transformKeys();  // a transform, a rotation
 
 // Every integrator and direct-lighting estimator type: the core ones and the techniques'.
 const TechniqueRegistry& techniqueRegistry();

@@ -16,14 +16,65 @@ namespace {
 
 constexpr float kRadiansPerDegree = kPi / 180;
 
+const KeyTable kPointKeys{
+    "light/point",
+    "isotropic point light of radiant intensity I (irradiance I cos θ / d²); only next-event "
+    "estimation finds it",
+    {key("position").vector().means("where it is"),
+     key("intensity").colour().means("radiant intensity I")}};
+
+const KeyTable kSpotKeys{
+    "light/spot",
+    "a point light with I(θ) = I₀ inside `falloff_start`, 0 beyond `cone_angle`, smoothstep in "
+    "cos θ between (pbrt-v4's falloff); power π I₀ (2 − cos θs − cos θc)",
+    {key("position").vector().means("where it is"),
+     key("look_at").vector().means("a point on its axis (≠ position)"),
+     key("intensity").colour().means("on-axis radiant intensity I₀"),
+     key("cone_angle")
+         .number(Range{0, 90, true, false})
+         .means("half-angle in degrees where the intensity reaches 0"),
+     key("falloff_start")
+         .number(Range::closed(0, 90))
+         .defaultSays("`cone_angle` (a hard edge)")
+         .means("half-angle in degrees where the falloff begins, ≤ `cone_angle`")}};
+
+const KeyTable kEnvironmentKeys{
+    "light/environment",
+    "light from every direction: a constant `radiance`, or a map from `file` (see Environment "
+    "maps); power π r² ∫ L dω with r the scene's bounding radius",
+    {key("radiance").colour().optional().means("constant radiance (not with `file`)"),
+     key("file").string().optional().means(
+         "a map (.hdr or .exr) on the asset search path (not with `radiance`)"),
+     key("layout")
+         .choice({"latlong", "probe"})
+         .defaultSays("required with `file`")
+         .means("the map's parameterisation"),
+     key("scale").colour().byDefault(1.0).means("multiplies the map"),
+     key("transform")
+         .object("transform")
+         .optional()
+         .means("rotations only: the map's direction d appears at R d"),
+     key("latlong_width")
+         .integer(Range::closed(16, 16384))
+         .optional()
+         .means("`probe` only: resample once at load into a lat-long map of this (even) width "
+                "and half its height, which every technique then sees"),
+     key("sampling")
+         .choice({"luminance", "cosine", "uniform"})
+         .byDefault("luminance")
+         .estimandNeutral()
+         .means("how light samples draw directions: ∝ luminance × solid angle (pbrt-v1's "
+                "infinitesample; uniform for a constant), cosine-weighted about the receiver's "
+                "normal (pbrt-v1's infinite), or uniform (1/4π)")}};
+
 std::unique_ptr<Light> makeSpot(ObjectReader& j, const AssetResolver&, const Transform& place) {
-    const Vec3d from = j.getPoint("position");
+    const Vec3d from = j.point("position");
     const Vec3 position = place.point(from);
-    const Vec3 axis = toFloat(j.getPoint("look_at") - from);
+    const Vec3 axis = toFloat(j.point("look_at") - from);
     if (!(length(axis) > 0)) j.fail("look_at", "must differ from position");
-    const Rgb intensity = j.getRgb("intensity");
-    const float cone = j.getFloat("cone_angle", Range{0, 90, true, false});
-    const float falloffStart = j.getFloat("falloff_start", cone, Range::closed(0, 90));
+    const Rgb intensity = j.colour("intensity");
+    const float cone = j.real("cone_angle");
+    const float falloffStart = j.getFloat("falloff_start", cone, j.spec("falloff_start").range);
     if (falloffStart > cone)
         j.fail("falloff_start", "must not exceed cone_angle (" + std::to_string(cone) + ")");
     return std::make_unique<SpotLight>(position, normalize(axis), intensity,
@@ -51,15 +102,14 @@ Frame readRotation(ObjectReader& j) {
 // "sampling": how light samples draw directions (env_sampling.h); `luminance` by default
 // (a constant environment: uniform, the same thing).
 EnvSampling readEnvSampling(ObjectReader& j) {
-    const std::string name =
-        j.getChoice("sampling", {"luminance", "cosine", "uniform"}, std::string("luminance"));
+    const std::string name = j.choice("sampling");
     if (name == "cosine") return EnvSampling::Cosine;
     return name == "uniform" ? EnvSampling::Uniform : EnvSampling::Luminance;
 }
 
 std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& assets) {
-    const std::string layoutName = j.getChoice("layout", {"latlong", "probe"});
-    const Rgb scale = j.getRgb("scale", Rgb(1.0f));
+    const std::string layoutName = j.choice("layout");
+    const Rgb scale = j.colour("scale");
     const Frame toWorld = readRotation(j);
     // "latlong_width": the probe resampled once into a lat-long map of that width, which is
     // then the light every technique sees (two-stage sampling works on the lat-long grid).
@@ -67,7 +117,7 @@ std::unique_ptr<Light> makeEnvironmentMap(ObjectReader& j, const AssetResolver& 
     if (j.has("latlong_width")) {
         if (layoutName != "probe")
             j.fail("latlong_width", "resampling to lat-long applies to \"layout\": \"probe\"");
-        latLongWidth = static_cast<int>(j.getInt("latlong_width", 0, Range::closed(16, 16384)));
+        latLongWidth = static_cast<int>(j.integer("latlong_width"));
         if (latLongWidth % 2 != 0)
             j.fail("latlong_width", "must be even (the map's height is half its width)");
     }
@@ -92,23 +142,28 @@ std::unique_ptr<Light> makeEnvironment(ObjectReader& j, const AssetResolver& ass
                "an environment needs either \"radiance\" (constant) or \"file\" "
                "(a map), not both or neither");
     if (j.has("file")) return makeEnvironmentMap(j, assets);
-    return std::make_unique<ConstantEnvironment>(j.getRgb("radiance"), readEnvSampling(j));
+    return std::make_unique<ConstantEnvironment>(j.colour("radiance"), readEnvSampling(j));
 }
 
 }  // namespace
 
 std::unique_ptr<Light> makeLight(ObjectReader& json, const AssetResolver& assets,
                                  const Transform& worldToRender) {
-    static const TypeTable<Light, const AssetResolver&, const Transform&> table{
+    return buildByType(json, "light", lightTypes(), assets, worldToRender);
+}
+
+const LightTypes& lightTypes() {
+    static const LightTypes table{
         {"point",
-         [](ObjectReader& j, const AssetResolver&, const Transform& place) {
-             return std::make_unique<PointLight>(place.point(j.getPoint("position")),
-                                                 j.getRgb("intensity"));
-         }},
-        {"spot", makeSpot},
-        {"environment", makeEnvironment},
+         {[](ObjectReader& j, const AssetResolver&, const Transform& place) {
+              return std::make_unique<PointLight>(place.point(j.point("position")),
+                                                  j.colour("intensity"));
+          },
+          &kPointKeys}},
+        {"spot", {makeSpot, &kSpotKeys}},
+        {"environment", {makeEnvironment, &kEnvironmentKeys}},
     };
-    return buildByType(json, "light", table, assets, worldToRender);
+    return table;
 }
 
 }  // namespace rr

@@ -24,4 +24,8 @@ struct RenderSettings {
 // Reads the "render" object; its path-length keys go to *path.
 RenderSettings readRenderSettings(ObjectReader& json, PathSettings* path);
 
+// The keys of the "render" object and of each filter type.
+const KeyTable& renderKeys();
+std::vector<std::pair<std::string, const KeyTable*>> filterTypeKeys();
+
 }  // namespace rr

@@ -8,6 +8,7 @@
 #include "loader/camera_reader.h"
 #include "loader/factories.h"
 #include "loader/material_catalog.h"
+#include "loader/scene_keys.h"
 #include "loader/shape_reader.h"
 #include "render/renderer.h"
 
@@ -109,24 +110,9 @@ ScheduleInputs LoadedScene::scheduleInputs(uint32_t spp, double timeLimit) const
                           timeLimit, render.seed,  render.filter};
 }
 
-Json estimandOf(const Json& document) {
-    Json estimand = document;
-    if (!estimand.is_object()) return estimand;
-    estimand.erase("description");
-    if (const auto render = estimand.find("render");
-        render != estimand.end() && render->is_object())
-        for (const char* key : {"spp", "seed", "sampler", "light_selection", "rr_depth",
-                                "rr_survival", "rr_threshold"})
-            render->erase(key);
-    if (const auto lights = estimand.find("lights"); lights != estimand.end() && lights->is_array())
-        for (Json& light : *lights)
-            if (light.is_object()) light.erase("sampling");
-    return estimand;
-}
-
 LoadedScene loadScene(const Json& document, const AssetResolver& assets, SceneCache* cache) {
-    ObjectReader root(document, "");
-    root.getString("description", "");
+    ObjectReader root(document, "", sceneRootKeys());
+    if (root.has("description")) root.string("description");
 
     PathSettings path;
     RenderSettings render;

@@ -43,10 +43,11 @@ LoadedScene loadScene(const Json& document, const AssetResolver& assets,
                       SceneCache* cache = nullptr);
 
 // The document without what changes only how its image is estimated, never the image's
-// expectation: the description; the render settings spp, seed, sampler, light_selection,
-// rr_depth, rr_survival and rr_threshold; each light's `sampling`. Two documents with the same
-// estimand converge to the same image (the harness keys its references by it). The integrator
-// stays: `direct` and `path` estimate different images.
+// expectation: the keys the scene's key tables declare estimand-neutral (the description; the
+// render settings spp, seed, sampler, light_selection, rr_depth, rr_survival, rr_threshold;
+// an environment light's `sampling`: loader/scene_keys.cpp gathers the tables). Two documents
+// with the same estimand converge to the same image (the harness keys its references by it).
+// The integrator stays: `direct` and `path` estimate different images.
 Json estimandOf(const Json& document);
 
 }  // namespace rr

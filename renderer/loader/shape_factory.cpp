@@ -14,6 +14,77 @@ namespace rr {
 
 namespace {
 
+const KeyTable kSphereKeys{
+    "shape/sphere",
+    "analytic sphere (exact hits and normals, normal outward); uv = (φ/2π, θ/π) about its own z "
+    "axis; similarity transforms only; as a light, sampled by the cone it subtends",
+    {key("center").vector().byDefault({0, 0, 0}).means("centre"),
+     key("radius").number(Range::positive()).means("radius")}};
+
+const KeyTable kQuadKeys{
+    "shape/quad",
+    "the parallelogram corner + s·edge_u + t·edge_v, s, t ∈ [0, 1]; normal = edge_u × edge_v; "
+    "uv = (s, t); zero area is an error",
+    {key("corner").vector().means("one corner"), key("edge_u").vector().means("the edge along u"),
+     key("edge_v").vector().means("the edge along v")}};
+
+const KeyTable kDiskKeys{
+    "shape/disk",
+    "a disk; uv = (r/radius, φ/2π); similarity transforms only",
+    {key("center").vector().byDefault({0, 0, 0}).means("centre"),
+     key("normal").vector().byDefault({0, 0, 1}).means("the side it faces (non-zero)"),
+     key("radius").number(Range::positive()).means("radius")}};
+
+const KeyTable kPolygonKeys{
+    "shape/polygon",
+    "a convex planar polygon, normal by the right-hand rule on the vertex order (checked at "
+    "load: see Shapes); as a light, sampled by solid angle (Arvo 1995) or by area",
+    {key("vertices").points(3).means("[[x, y, z], …], at least 3, convex and planar"),
+     key("sampling")
+         .choice({"solid_angle", "area"})
+         .byDefault("solid_angle")
+         .means("as an emitter: uniform in the subtended solid angle (by area below 10⁻⁴ sr), "
+                "or always by area (worse density, cheaper: resampling's source density)")}};
+
+const KeyTable kMeshKeys{
+    "shape/mesh",
+    "triangles from a PLY (the renderer's own strict reader) or OBJ (Assimp) file; equal "
+    "vertices joined, degenerate triangles dropped; emits sampled uniformly by area",
+    {key("file").string().means("PLY or OBJ, found on the asset search path"),
+     key("normals")
+         .choice({"geometric", "smooth"})
+         .byDefault("geometric")
+         .means("shading normals: each triangle's own, or area-weighted vertex normals")}};
+
+const KeyTable kTransformKeys{
+    "transform",
+    "scale, then rotations in list order, then translation; or a 4×4 matrix",
+    {key("matrix").numbers(16).optional().means(
+         "row-major, acting on column vectors; affine: the bottom row [0, 0, 0, 1] (not with "
+         "scale, rotate, translate)"),
+     key("scale")
+         .custom("number > 0 or [sx, sy, sz]", {{"anyOf",
+                                                 {{{"type", "number"}, {"exclusiveMinimum", 0}},
+                                                  {{"type", "array"},
+                                                   {"items", {{"type", "number"}}},
+                                                   {"minItems", 3},
+                                                   {"maxItems", 3}}}}})
+         .optional()
+         .means("uniform or per-axis scale"),
+     key("rotate")
+         .custom("a rotation object or a list of them",
+                 {{"anyOf",
+                   {{{"$ref", "#/$defs/rotation"}},
+                    {{"type", "array"}, {"items", {{"$ref", "#/$defs/rotation"}}}}}}})
+         .optional()
+         .means("rotations, applied in list order"),
+     key("translate").vector().byDefault({0, 0, 0}).means("translation")}};
+
+const KeyTable kRotationKeys{
+    "rotation",
+    "a rotation about an axis through the origin",
+    {key("axis").vector().means("non-zero axis"), key("angle").number().means("degrees")}};
+
 float similarityScale(ObjectReader& j, const Transform& t, const char* shape) {
     float scale = 1;
     if (!t.isSimilarity(&scale))
@@ -23,8 +94,8 @@ float similarityScale(ObjectReader& j, const Transform& t, const char* shape) {
 }
 
 std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3d center = j.getPoint("center", Vec3d{});
-    const float radius = j.getFloat("radius", Range::positive());
+    const Vec3d center = j.point("center");
+    const float radius = j.real("radius");
     const float scale = similarityScale(j, t, "sphere");
     // The transform's rotation turns the sphere's own axes (the poles of its uv).
     Frame orientation;
@@ -35,9 +106,9 @@ std::unique_ptr<Shape> makeSphere(ObjectReader& j, const Transform& t, const Ass
 }
 
 std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3 corner = t.point(j.getPoint("corner"));
-    const Vec3 edgeU = t.vector(j.getVec3("edge_u"));
-    const Vec3 edgeV = t.vector(j.getVec3("edge_v"));
+    const Vec3 corner = t.point(j.point("corner"));
+    const Vec3 edgeU = t.vector(j.vector("edge_u"));
+    const Vec3 edgeV = t.vector(j.vector("edge_v"));
     const float area = length(cross(edgeU, edgeV));
     if (!(area > 1e-12f * (lengthSquared(edgeU) + lengthSquared(edgeV))) || !(area > 0))
         j.fail("edge_v", "edges are parallel or zero: the quad has zero area");
@@ -45,9 +116,9 @@ std::unique_ptr<Shape> makeQuad(ObjectReader& j, const Transform& t, const Asset
 }
 
 std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const AssetResolver&) {
-    const Vec3d center = j.getPoint("center", Vec3d{});
-    const Vec3 normal = j.getVec3("normal", Vec3(0, 0, 1));
-    const float radius = j.getFloat("radius", Range::positive());
+    const Vec3d center = j.point("center");
+    const Vec3 normal = j.vector("normal");
+    const float radius = j.real("radius");
     if (!(length(normal) > 0)) j.fail("normal", "expected a non-zero vector");
     const float scale = similarityScale(j, t, "disk");
     return std::make_unique<Disk>(t.point(center), normalize(t.normal(normal)), radius * scale);
@@ -55,22 +126,21 @@ std::unique_ptr<Shape> makeDisk(ObjectReader& j, const Transform& t, const Asset
 
 std::unique_ptr<Shape> makePolygon(ObjectReader& j, const Transform& t, const AssetResolver&) {
     std::vector<Vec3> vertices;
-    for (const Vec3d& v : j.getPointArray("vertices", 3))
+    for (const Vec3d& v : j.points("vertices"))
         vertices.push_back(t.point(v));
     if (const auto problem = checkConvexPolygon(vertices)) {
         if (problem->vertex < 0) j.fail("vertices", problem->message);
         throw ConfigError(j.pointerTo("vertices") + "/" + std::to_string(problem->vertex),
                           "vertex " + std::to_string(problem->vertex) + " " + problem->message);
     }
-    // As an emitter: "solid_angle" (Arvo 1995) or "area" (cheaper, a worse density).
-    const std::string sampling = j.getChoice("sampling", {"solid_angle", "area"}, "solid_angle");
+    const std::string sampling = j.choice("sampling");
     return std::make_unique<Polygon>(
         vertices, sampling == "area" ? PolygonSampling::Area : PolygonSampling::SolidAngle);
 }
 
 std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const AssetResolver& assets) {
     const std::filesystem::path path = readAssetPath(j, "file", assets, "mesh");
-    const std::string normals = j.getChoice("normals", {"geometric", "smooth"}, "geometric");
+    const std::string normals = j.choice("normals");
     MeshData data;
     try {
         data = loadMesh(path);
@@ -89,20 +159,29 @@ std::unique_ptr<Shape> makeMesh(ObjectReader& j, const Transform& t, const Asset
 
 std::unique_ptr<Shape> makeShape(ObjectReader& json, const Transform& transform,
                                  const AssetResolver& assets) {
+    return buildByType(json, "shape", shapeTypes(), transform, assets);
+}
+
+const TypeTable<Shape, const Transform&, const AssetResolver&>& shapeTypes() {
     static const TypeTable<Shape, const Transform&, const AssetResolver&> table{
-        {"sphere", makeSphere},   {"quad", makeQuad}, {"disk", makeDisk},
-        {"polygon", makePolygon}, {"mesh", makeMesh},
+        {"sphere", {makeSphere, &kSphereKeys}}, {"quad", {makeQuad, &kQuadKeys}},
+        {"disk", {makeDisk, &kDiskKeys}},       {"polygon", {makePolygon, &kPolygonKeys}},
+        {"mesh", {makeMesh, &kMeshKeys}},
     };
-    return buildByType(json, "shape", table, transform, assets);
+    return table;
+}
+
+std::vector<const KeyTable*> transformKeys() {
+    return {&kTransformKeys, &kRotationKeys};
 }
 
 Transform readTransform(ObjectReader& parent, const std::string& key) {
     const Json* value = parent.rawOptional(key);
     if (!value) return Transform();
-    ObjectReader j(*value, parent.pointerTo(key));
+    ObjectReader j(*value, parent.pointerTo(key), kTransformKeys);
     Transform t;
     if (j.has("matrix")) {
-        const auto m = j.getNumbers("matrix", 16);
+        const auto m = j.numbers("matrix");
         // Affine only: the bottom row (acting on column vectors) must be [0, 0, 0, 1].
         for (int i = 12; i < 16; ++i)
             if (m[i] != (i == 15 ? 1.0 : 0.0))
@@ -119,10 +198,10 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
         if (const Json* rotations = j.rawOptional("rotate")) {
             const std::string at = j.pointerTo("rotate");
             auto addRotation = [&](const Json& r, const std::string& pointer) {
-                ObjectReader rj(r, pointer);
-                const Vec3 axis = rj.getVec3("axis");
+                ObjectReader rj(r, pointer, kRotationKeys);
+                const Vec3 axis = rj.vector("axis");
                 if (!(length(axis) > 0)) rj.fail("axis", "expected a non-zero vector");
-                t = t.then(Transform::rotate(axis, rj.getNumber("angle")));
+                t = t.then(Transform::rotate(axis, rj.number("angle")));
                 rj.finish();
             };
             if (rotations->is_array()) {
@@ -132,7 +211,7 @@ Transform readTransform(ObjectReader& parent, const std::string& key) {
                 addRotation(*rotations, at);
             }
         }
-        t = t.then(Transform::translate(j.getPoint("translate", Vec3d{})));
+        t = t.then(Transform::translate(j.point("translate")));
     }
     if (!t.isInvertible()) parent.fail(key, "the transform is singular");
     j.finish();

@@ -6,17 +6,67 @@
 
 namespace rr {
 
+namespace {
+
+const KeyTable kShapeKeys{
+    "shape",
+    "",
+    {key("type").string().means("the shape's type"),
+     key("material")
+         .custom("a material name or object",
+                 {{"anyOf", {{{"type", "string"}}, {{"$ref", "#/$defs/material"}}}}})
+         .defaultSays("required unless the shape emits or has an `interior_medium`")
+         .means("an emitter without a material reflects nothing; a medium boundary without one "
+                "is index-matched: rays pass through it, only the medium changes"),
+     key("emission").object("emission").optional().means("makes the shape a diffuse area light"),
+     key("transform")
+         .object("transform")
+         .optional()
+         .means("applied to the shape's defining points"),
+     key("motion").object("motion").optional().means(
+         "linear motion over scene time [0, 1] (Embree motion blur)"),
+     key("interior_medium")
+         .object("medium")
+         .optional()
+         .means("fills the shape's inside (the side opposite its normal; closed shapes with "
+                "outward normals)")}};
+
+const KeyTable kEmissionKeys{
+    "emission",
+    "a diffuse area light on the shape",
+    {key("radiance").colour().means("emitted radiance"),
+     key("two_sided")
+         .boolean()
+         .byDefault(false)
+         .means("emit on both sides; one-sided emitters emit on the side of their normal")}};
+
+const KeyTable kMotionKeys{
+    "motion",
+    "linear motion",
+    {key("translate").vector().means("the displacement from scene time 0 to 1")}};
+
+}  // namespace
+
+const KeyTable& shapeCommonKeys() {
+    return kShapeKeys;
+}
+
+std::vector<const KeyTable*> shapePartKeys() {
+    return {&kEmissionKeys, &kMotionKeys};
+}
+
 void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builder,
                const AssetResolver& assets, const CameraReading& view) {
+    j.addKeys(kShapeKeys);
     const CameraSettings& camera = view.camera;
     Transform transform = readTransform(j, "transform");
 
     Rgb emission(0.0f);
     bool twoSided = false;
     if (const Json* e = j.rawOptional("emission")) {
-        ObjectReader ej(*e, j.pointerTo("emission"));
-        emission = ej.getRgb("radiance");
-        twoSided = ej.getBool("two_sided", false);
+        ObjectReader ej(*e, j.pointerTo("emission"), kEmissionKeys);
+        emission = ej.colour("radiance");
+        twoSided = ej.boolean("two_sided");
         ej.finish();
     }
     const Medium* interior = nullptr;
@@ -33,8 +83,8 @@ void readShape(ObjectReader& j, MaterialCatalog& materials, SceneBuilder& builde
 
     Vec3 motion(0.0f);
     if (const Json* m = j.rawOptional("motion")) {
-        ObjectReader mj(*m, j.pointerTo("motion"));
-        motion = mj.getVec3("translate");
+        ObjectReader mj(*m, j.pointerTo("motion"), kMotionKeys);
+        motion = mj.vector("translate");
         mj.finish();
     }
     // Without a shutter interval a moving shape is frozen where it is at the shutter instant,

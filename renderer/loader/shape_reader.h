@@ -16,4 +16,8 @@ namespace rr {
 void readShape(ObjectReader& json, MaterialCatalog& materials, SceneBuilder& builder,
                const AssetResolver& assets, const CameraReading& view);
 
+// The keys every shape takes, and the tables of its "emission" and "motion" objects.
+const KeyTable& shapeCommonKeys();
+std::vector<const KeyTable*> shapePartKeys();
+
 }  // namespace rr

@@ -13,6 +13,41 @@ namespace rr {
 
 namespace {
 
+// A texture's value keys take the range of the key that holds the texture.
+KeySpec valueKey(const char* name, const char* meaning) {
+    return key(name)
+        .custom("a constant (number, or colour) or a texture, in the parameter's range",
+                {{"anyOf",
+                  {{{"type", "number"}},
+                   {{"type", "array"},
+                    {"items", {{"type", "number"}}},
+                    {"minItems", 3},
+                    {"maxItems", 3}},
+                   {{"$ref", "#/$defs/texture"}}}}})
+        .means(meaning);
+}
+
+const KeyTable kCheckerKeys{
+    "texture/checker",
+    "`even` where ⌊u·nu⌋ + ⌊v·nv⌋ is even, `odd` elsewhere; the pattern continues outside [0, 1)²",
+    {valueKey("even", "the even squares' value"), valueKey("odd", "the odd squares' value"),
+     squaresKey()}};
+
+const KeyTable kGradientKeys{
+    "texture/gradient",
+    "from + (to − from)·t, with t the coordinate clamped to [0, 1]",
+    {valueKey("from", "the value at t = 0 (a constant)"),
+     valueKey("to", "the value at t = 1 (a constant)"),
+     key("axis").choice({"u", "v"}).byDefault("v").means("the coordinate t")}};
+
+const KeyTable kImageKeys{
+    "texture/image",
+    "scale × the bilinear interpolation between texel centres, repeating in u and v (the file's "
+    "top row at v = 1); a number key takes the texels' Rec. 709 luminance",
+    {key("file").string().means(
+         "an OpenEXR (channels R, G, B, or Y) or Radiance .hdr file on the asset search path"),
+     key("scale").number().byDefault(1.0).means("multiplies every texel")}};
+
 // What differs between float and colour parameters: how a constant is read, how an image
 // texel becomes a value (a float parameter takes the texel's Rec. 709 luminance), and the
 // range check of a computed value.
@@ -66,15 +101,15 @@ template <class T>
 std::unique_ptr<Texture<T>> makeGradient(ObjectReader& j, Range range, const AssetResolver&) {
     const T from = ValueTraits<T>::read(j, "from", std::nullopt, range);
     const T to = ValueTraits<T>::read(j, "to", std::nullopt, range);
-    const auto axis = j.getChoice("axis", {"u", "v"}, "v") == "u" ? GradientTexture<T>::Axis::U
-                                                                  : GradientTexture<T>::Axis::V;
+    const auto axis =
+        j.choice("axis") == "u" ? GradientTexture<T>::Axis::U : GradientTexture<T>::Axis::V;
     return std::make_unique<GradientTexture<T>>(from, to, axis);
 }
 
 template <class T>
 std::unique_ptr<Texture<T>> makeImage(ObjectReader& j, Range range, const AssetResolver& assets) {
     const RgbImage image = readImageAsset(j, "file", assets, "image");
-    const float scale = j.getFloat("scale", 1.0f);
+    const float scale = j.real("scale");
     if (image.width < 1 || image.height < 1) j.fail("file", "the image is empty");
     std::vector<T> texels;
     texels.reserve(image.pixels.size());
@@ -96,9 +131,9 @@ std::unique_ptr<Texture<T>> makeImage(ObjectReader& j, Range range, const AssetR
 template <class T>
 TexturePtr<T> makeTexture(ObjectReader& j, Range range, const AssetResolver& assets) {
     static const TypeTable<Texture<T>, Range, const AssetResolver&> table{
-        {"checker", makeChecker<T>},
-        {"gradient", makeGradient<T>},
-        {"image", makeImage<T>},
+        {"checker", {makeChecker<T>, &kCheckerKeys}},
+        {"gradient", {makeGradient<T>, &kGradientKeys}},
+        {"image", {makeImage<T>, &kImageKeys}},
     };
     return buildByType(j, "texture", table, range, assets);
 }
@@ -116,19 +151,40 @@ TexturePtr<T> readTexture(ObjectReader& json, const std::string& key, std::optio
 
 }  // namespace
 
-TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key, float fallback,
-                                   Range range, const AssetResolver& assets) {
-    return readTexture<float>(json, key, fallback, range, assets);
+TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key,
+                                   const AssetResolver& assets) {
+    const KeySpec& spec = json.spec(key);
+    std::optional<float> fallback;
+    if (spec.fallback.is_number()) fallback = spec.fallback.get<float>();
+    return readTexture<float>(json, key, fallback, spec.range, assets);
+}
+
+TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key,
+                               const AssetResolver& assets) {
+    const KeySpec& spec = json.spec(key);
+    std::optional<Rgb> fallback;
+    if (spec.fallback.is_number()) fallback = Rgb(spec.fallback.get<float>());
+    return readTexture<Rgb>(json, key, fallback, spec.range, assets);
 }
 
 TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key, const Rgb& fallback,
-                               Range range, const AssetResolver& assets) {
-    return readTexture<Rgb>(json, key, fallback, range, assets);
+                               const AssetResolver& assets) {
+    return readTexture<Rgb>(json, key, fallback, json.spec(key).range, assets);
+}
+
+KeySpec squaresKey() {
+    return key("squares")
+        .numbers(2, Range::closed(1, 1e6))
+        .byDefault({8, 8})
+        .means("[nu, nv] integers: squares along u and v");
+}
+
+std::vector<std::pair<std::string, const KeyTable*>> textureTypeKeys() {
+    return {{"checker", &kCheckerKeys}, {"gradient", &kGradientKeys}, {"image", &kImageKeys}};
 }
 
 Checkerboard readCheckerboard(ObjectReader& json) {
-    if (!json.has("squares")) return {};
-    const auto squares = json.getNumbers("squares", 2, Range::closed(1, 1e6));
+    const auto squares = json.numbers("squares");
     if (squares[0] != std::floor(squares[0]) || squares[1] != std::floor(squares[1]))
         json.fail("squares", "expected two integers");
     return {int(squares[0]), int(squares[1])};

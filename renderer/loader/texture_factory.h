@@ -7,6 +7,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "config/json_reader.h"
 #include "loader/asset_resolver.h"
@@ -15,12 +17,22 @@
 
 namespace rr {
 
-TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key, float fallback,
-                                   Range range, const AssetResolver& assets);
+// The texture-valued key `key`, with the range and default its table declares (a
+// NumberTexture or ColourTexture key).
+TexturePtr<float> readFloatTexture(ObjectReader& json, const std::string& key,
+                                   const AssetResolver& assets);
+TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key,
+                               const AssetResolver& assets);
+// The same with a default that depends on other keys (the table says so in words).
 TexturePtr<Rgb> readRgbTexture(ObjectReader& json, const std::string& key, const Rgb& fallback,
-                               Range range, const AssetResolver& assets);
+                               const AssetResolver& assets);
 
-// "squares": [nu, nv], integers ≥ 1, default [8, 8] (checker textures and materials).
+// "squares": [nu, nv], integers ≥ 1, default [8, 8] (checker textures and materials): its
+// declaration, for their tables, and its reading.
+KeySpec squaresKey();
 Checkerboard readCheckerboard(ObjectReader& json);
+
+// Each texture type's keys.
+std::vector<std::pair<std::string, const KeyTable*>> textureTypeKeys();
 
 }  // namespace rr

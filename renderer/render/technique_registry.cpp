@@ -9,37 +9,44 @@ namespace rr {
 
 BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) {
     SampleIntegrator* samples = integrator.get();
-    return {std::move(integrator), [samples](const ScheduleInputs& in) {
+    return {std::move(integrator),
+            [samples](const ScheduleInputs& in) {
                 samples->beginImage(in.width, in.height, /*iterated=*/false);
                 return std::make_unique<UniformPasses>(in.scene, *samples, in.width, in.height,
                                                        in.spp, in.timeLimit, in.splattingFilm());
-            }};
+            },
+            /*uniformPasses=*/true};
 }
 
-void TechniqueRegistry::addIntegrator(const std::string& type, IntegratorBuilder build,
-                                      bool rendersMedia) {
-    if (!integrators_.emplace(type, IntegratorEntry{std::move(build), rendersMedia}).second)
+void TechniqueRegistry::addIntegrator(const std::string& type, const KeyTable& keys,
+                                      IntegratorBuilder build, bool rendersMedia) {
+    if (!integrators_.emplace(type, IntegratorEntry{std::move(build), &keys, rendersMedia}).second)
         throw std::logic_error("integrator type \"" + type + "\" registered twice");
 }
 
-void TechniqueRegistry::addEstimator(const std::string& type, EstimatorBuilder build) {
-    if (!estimators_.emplace(type, std::move(build)).second)
+void TechniqueRegistry::addEstimator(const std::string& type, const KeyTable& keys,
+                                     EstimatorBuilder build) {
+    if (!estimators_.emplace(type, EstimatorEntry{std::move(build), &keys}).second)
         throw std::logic_error("estimator type \"" + type + "\" registered twice");
 }
 
 BuiltIntegrator TechniqueRegistry::makeIntegrator(ObjectReader& json,
                                                   const PathSettings& path) const {
-    BuiltIntegrator built =
-        entryByType(json, "integrator", integrators_).build(json, IntegratorContext{path, *this});
+    const IntegratorEntry& entry = entryByType(json, "integrator", integrators_);
+    json.addKeys(*entry.keys);
+    BuiltIntegrator built = entry.build(json, IntegratorContext{path, *this});
     json.finish();
+    built.integrator->setReadParameters(json.values());
     return built;
 }
 
 std::unique_ptr<DirectLightingEstimator> TechniqueRegistry::makeEstimator(
     ObjectReader& json) const {
-    std::unique_ptr<DirectLightingEstimator> estimator =
-        entryByType(json, "direct-lighting estimator", estimators_)(json);
+    const EstimatorEntry& entry = entryByType(json, "direct-lighting estimator", estimators_);
+    json.addKeys(*entry.keys);
+    std::unique_ptr<DirectLightingEstimator> estimator = entry.build(json);
     json.finish();
+    estimator->setReadParameters(json.values());
     return estimator;
 }
 
@@ -53,6 +60,14 @@ std::vector<std::string> TechniqueRegistry::mediaIntegrators() const {
     for (const auto& [type, entry] : integrators_)
         if (entry.rendersMedia) types.push_back(type);
     return types;
+}
+
+std::vector<std::pair<std::string, const KeyTable*>> TechniqueRegistry::integratorKeys() const {
+    return typeKeys(integrators_);
+}
+
+std::vector<std::pair<std::string, const KeyTable*>> TechniqueRegistry::estimatorKeys() const {
+    return typeKeys(estimators_);
 }
 
 std::vector<std::string> TechniqueRegistry::integratorTypes() const {

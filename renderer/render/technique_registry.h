@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/json_reader.h"
@@ -39,6 +40,9 @@ using ScheduleMaker = std::function<std::unique_ptr<RenderSchedule>(const Schedu
 struct BuiltIntegrator {
     std::unique_ptr<Integrator> integrator;
     ScheduleMaker schedule;
+    // The schedule is uniform passes (withUniformPasses): every pixel gets the same samples,
+    // so a technique that allocates samples per pixel (PMC-IP) may schedule it instead.
+    bool uniformPasses = false;
 };
 
 // Uniform passes (render/uniform_passes.h): for integrators whose samples are independent.
@@ -59,10 +63,16 @@ class TechniqueRegistry {
         std::function<BuiltIntegrator(ObjectReader&, const IntegratorContext&)>;
     using EstimatorBuilder = std::function<std::unique_ptr<DirectLightingEstimator>(ObjectReader&)>;
 
+    // `keys`: the type's key table (config/key_table.h), which the builder reads through and
+    // from which the docs and the scene schema are generated; it must outlive the registry.
     // `rendersMedia`: the integrators of this type account for participating media (the
     // loader refuses a scene with media for any other).
-    void addIntegrator(const std::string& type, IntegratorBuilder build, bool rendersMedia);
-    void addEstimator(const std::string& type, EstimatorBuilder build);
+    void addIntegrator(const std::string& type, const KeyTable& keys, IntegratorBuilder build,
+                       bool rendersMedia);
+    void addEstimator(const std::string& type, const KeyTable& keys, EstimatorBuilder build);
+    // The table of an object inside an integrator's or estimator's (a key of kind Object
+    // refers to it by name), for the catalogue.
+    void addObjectKeys(const KeyTable& keys) { objectKeys_.push_back(&keys); }
 
     // From a JSON object with a "type" key; ConfigError naming the pointer for an unknown
     // type or any bad or unknown key.
@@ -73,14 +83,24 @@ class TechniqueRegistry {
     std::vector<std::string> mediaIntegrators() const;
     // Every integrator type, in order.
     std::vector<std::string> integratorTypes() const;
+    // Each type's key table, for the catalogue of scene keys.
+    std::vector<std::pair<std::string, const KeyTable*>> integratorKeys() const;
+    std::vector<std::pair<std::string, const KeyTable*>> estimatorKeys() const;
+    const std::vector<const KeyTable*>& objectKeys() const { return objectKeys_; }
 
   private:
     struct IntegratorEntry {
         IntegratorBuilder build;
+        const KeyTable* keys = nullptr;
         bool rendersMedia = false;
     };
+    struct EstimatorEntry {
+        EstimatorBuilder build;
+        const KeyTable* keys = nullptr;
+    };
     std::map<std::string, IntegratorEntry> integrators_;
-    std::map<std::string, EstimatorBuilder> estimators_;
+    std::map<std::string, EstimatorEntry> estimators_;
+    std::vector<const KeyTable*> objectKeys_;
 };
 
 // Adds every technique folder's entries (generated from RENDERER_TECHNIQUES).

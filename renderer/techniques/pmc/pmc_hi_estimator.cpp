@@ -61,14 +61,9 @@ struct PmcHiEstimator::Draw {
 };
 
 nlohmann::json PmcHiEstimator::parameters() const {
-    return {{"type", name()},
-            {"samples", settings_.samples},
-            {"iterations", settings_.iterations},
-            {"cone_share", settings_.coneShare},
-            {"floor", settings_.floor},
-            {"light_components", oneForAllLights_ ? "one" : "each"},
-            {"alpha_maps", settings_.alphaMaps},
-            {"feedback", settings_.feedback}};
+    nlohmann::json p = readParameters();
+    p["light_components"] = oneForAllLights_ ? "one" : "each";  // as resolved for the scene
+    return p;
 }
 
 PixelRecordLayout PmcHiEstimator::pixelRecords() const {

@@ -34,17 +34,8 @@ PmcIpIntegrator::PmcIpIntegrator(std::unique_ptr<SampleIntegrator> pixelIntegrat
 }
 
 nlohmann::json PmcIpIntegrator::parameters() const {
-    nlohmann::json p;
-    p["type"] = name();
+    nlohmann::json p = readParameters();
     p["integrator"] = pixelIntegrator_->parameters();
-    if (settings_.knownVarianceSpp > 0) {
-        p["known_variance_spp"] = settings_.knownVarianceSpp;
-    } else {
-        p["initial_spp"] = settings_.initialSpp;
-        p["iteration_spp"] = settings_.iterationSpp;
-        p["epsilon"] = settings_.epsilon;
-    }
-    p["image"] = settings_.image == ImageEstimate::Iterations ? "iterations" : "pooled";
     const int completed = iterationsDone_ + (currentIterationRan() && !pilot_ ? 1 : 0);
     if (completed > 0) {
         p["iterations"] = completed;

@@ -96,10 +96,11 @@ RisEstimator::RisEstimator(CandidateSource source, CandidateCounts counts,
     : source_(source), counts_(counts), maxCounts_(maxCounts) {}
 
 nlohmann::json RisEstimator::parameters() const {
-    return {{"type", name()},
-            {"source", sourceName(source_)},
-            {"candidates", counts_.m},
-            {"samples", counts_.n}};
+    nlohmann::json p = readParameters();
+    p["source"] = sourceName(source_);
+    p["candidates"] = counts_.m;
+    p["samples"] = counts_.n;
+    return p;
 }
 
 void RisEstimator::prepare(const Scene& scene, const std::string& pointer) {

@@ -7,18 +7,6 @@ namespace rr::ris {
 
 namespace {
 
-const char* choiceName(CountChoice choice) {
-    switch (choice) {
-        case CountChoice::Fixed:
-            return "fixed";
-        case CountChoice::Robust:
-            return "robust";
-        case CountChoice::Optimal:
-            return "optimal";
-    }
-    return "?";
-}
-
 // The largest M and N a render may use: the given ones, or within the budget (N ≤ budget
 // because M ≥ 1; M ≤ maxCandidates).
 CandidateCounts maxCounts(const RisSettings& s) {
@@ -34,19 +22,14 @@ RisIntegrator::RisIntegrator(const RisSettings& settings)
       counts_(settings.counts) {}
 
 nlohmann::json RisIntegrator::parameters() const {
-    nlohmann::json p = {{"type", name()},
-                        {"source", sourceName(settings_.source)},
-                        {"mode", choiceName(settings_.choice)},
-                        {"candidates", counts_.m},
-                        {"samples", counts_.n}};
+    // The counts used (fixed or chosen) and the costs they were chosen by.
+    nlohmann::json p = readParameters();
+    p["candidates"] = counts_.m;
+    p["samples"] = counts_.n;
     if (settings_.choice == CountChoice::Fixed) return p;
-    p["budget"] = settings_.budget;
-    p["max_candidates"] = settings_.maxCandidates;
     p["t_x_ns"] = costs_.tX * 1e9;
     p["t_y_ns"] = costs_.tY * 1e9;
     p["costs"] = settings_.costs ? "given" : "measured";
-    if (!settings_.costs) p["pilot_rays"] = settings_.pilotRays;
-    if (settings_.choice == CountChoice::Optimal) p["pilot_samples"] = settings_.pilotSamples;
     return p;
 }
 

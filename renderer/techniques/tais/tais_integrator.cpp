@@ -26,24 +26,8 @@ TaisIntegrator::TaisIntegrator(const TaisSettings& settings,
     : settings_(settings), mapPointers_(std::move(mapPointers)) {}
 
 nlohmann::json TaisIntegrator::parameters() const {
-    static const char* credits[] = {"path", "downstream"};
-    nlohmann::json p = {{"type", name()},
-                        {"maps", settings_.automatic ? "auto" : "listed"},
-                        {"maps_used", mapList(settings_)},
-                        {"alpha", settings_.alpha},
-                        {"alpha_follows_evidence", settings_.alphaFollowsEvidence},
-                        {"time_cells", settings_.timeCells},
-                        {"scatter_distance_cells", settings_.scatterDistanceCells},
-                        {"lens_size", settings_.lensSize},
-                        {"point_on_light_size", settings_.pointOnLightSize},
-                        {"scatter_direction_size", settings_.scatterDirectionSize},
-                        {"scatter_direction_bounces", settings_.scatterDirectionBounces},
-                        {"bifurcation_vertices", settings_.bifurcationVertices},
-                        {"light_selection_vertices", settings_.lightSelectionVertices},
-                        {"credit", credits[static_cast<int>(settings_.credit)]},
-                        {"contribution_filter", settings_.contributionFilter},
-                        {"band_rows", settings_.bandRows},
-                        {"band_warmup_rows", settings_.bandWarmupRows}};
+    nlohmann::json p = readParameters();
+    p["maps_used"] = mapList(settings_);
     settings_.path.addTo(&p);
     return p;
 }
@@ -119,52 +103,111 @@ std::unique_ptr<RenderSchedule> TaisIntegrator::schedule(const ScheduleInputs& i
 
 namespace {
 
+const TaisSettings kDefaults;
+
+KeySpec sizeKey(const char* name, int fallback, int lo, int hi, const char* meaning) {
+    return key(name).integer(Range::closed(lo, hi)).byDefault(fallback).means(meaning);
+}
+
+const KeyTable kTaisKeys{
+    "integrator/tais",
+    "`path_mis` with table-driven adaptive importance sampling (Cline, Adams & Egbert 2008): "
+    "per-pixel importance maps learned from the pixels rendered before steer the path's "
+    "decisions; unbiased (the contribution filter aside); a fixed spp in scan order",
+    {key("maps")
+         .custom(R"(`"auto"` or an array of map names)",
+                 {{"anyOf",
+                   {{{"const", "auto"}},
+                    {{"type", "array"},
+                     {"uniqueItems", true},
+                     {"items",
+                      {{"enum",
+                        {"time", "lens", "scatter_distance", "bifurcation", "light_selection",
+                         "point_on_light", "scatter_direction"}}}}}}}})
+         .byDefault("auto")
+         .means("the maps of the paper's Table 1; `\"auto\"`: those whose decision the scene "
+                "has; `[]` is `path_mis`, bit for bit"),
+     key("alpha")
+         .number(Range::open(0, 1))
+         .byDefault(kDefaults.alpha)
+         .means("eq. (2): the probability that a world-space map makes its decision"),
+     key("alpha_follows_evidence")
+         .boolean()
+         .byDefault(kDefaults.alphaFollowsEvidence)
+         .means("beyond the paper: a world map mixes in only its credited part, with alpha × "
+                "that part's share of the decision's mass; false: eq. (2)"),
+     sizeKey("time_cells", kDefaults.timeCells, 2, 4096, "1-D time map size"),
+     sizeKey("scatter_distance_cells", kDefaults.scatterDistanceCells, 2, 4096,
+             "1-D scatter-distance map size"),
+     sizeKey("lens_size", kDefaults.lensSize, 2, 256, "the lens map is size × size"),
+     sizeKey("point_on_light_size", kDefaults.pointOnLightSize, 2, 256,
+             "the point-on-light map is size × size"),
+     sizeKey("scatter_direction_size", kDefaults.scatterDirectionSize, 2, 256,
+             "the scatter-direction map is size × size"),
+     sizeKey("scatter_direction_bounces", kDefaults.scatterDirectionBounces, 1, 2,
+             "2 adds a map for the second non-specular bounce (fig. 14)"),
+     sizeKey("bifurcation_vertices", kDefaults.bifurcationVertices, 1,
+             MapGuide::kMaxBifurcationVertices,
+             "path vertices with their own reflect/transmit entries"),
+     sizeKey("light_selection_vertices", kDefaults.lightSelectionVertices, 1,
+             MapGuide::kMaxLightSelectionVertices,
+             "beyond the paper: path vertices whose light choice has its own entries"),
+     key("credit")
+         .choice({"downstream", "path"})
+         .byDefault("downstream")
+         .means("what a sample adds to a map: the paper's |L(x)| (`path`), or the part of "
+                "L(x) gathered after the decision"),
+     key("contribution_filter")
+         .boolean()
+         .byDefault(kDefaults.contributionFilter)
+         .means("eq. (4): clamp each pixel's samples; biased, so report it apart"),
+     sizeKey("band_rows", kDefaults.bandRows, 1, 1 << 20,
+             "rows per band, scanned independently from uniform maps (the image depends on "
+             "it, never on the thread count)"),
+     sizeKey("band_warmup_rows", kDefaults.bandWarmupRows, 0, 1 << 20,
+             "rows of the band above scanned first to learn the maps, their samples "
+             "discarded")}};
+
 std::unique_ptr<TaisIntegrator> makeTaisIntegrator(ObjectReader& j, const PathSettings& path) {
     TaisSettings s;
     s.path = path;
     std::array<std::string, kMapKinds> pointers;
-    if (const Json* maps = j.rawOptional("maps")) {
-        if (maps->is_string() && maps->get<std::string>() == "auto") {
-            s.automatic = true;
-        } else if (maps->is_array()) {
-            s.automatic = false;
-            for (size_t i = 0; i < maps->size(); ++i) {
-                const std::string pointer = j.pointerTo("maps") + "/" + std::to_string(i);
-                MapKind kind;
-                if (!(*maps)[i].is_string() || !parseMapName((*maps)[i].get<std::string>(), &kind))
-                    throw ConfigError(pointer,
-                                      "expected a map name: time, lens, scatter_distance, "
-                                      "bifurcation, light_selection, point_on_light or "
-                                      "scatter_direction");
-                if (s.uses(kind)) throw ConfigError(pointer, "map listed twice");
-                s.enabled[static_cast<int>(kind)] = true;
-                pointers[static_cast<int>(kind)] = pointer;
-            }
-        } else {
-            j.fail("maps", "expected \"auto\" or an array of map names");
+    const Json* given = j.rawOptional("maps");
+    const Json& maps = given ? *given : j.spec("maps").fallback;
+    if (maps.is_string() && maps.get<std::string>() == "auto") {
+        s.automatic = true;
+    } else if (maps.is_array()) {
+        s.automatic = false;
+        for (size_t i = 0; i < maps.size(); ++i) {
+            const std::string pointer = j.pointerTo("maps") + "/" + std::to_string(i);
+            MapKind kind;
+            if (!maps[i].is_string() || !parseMapName(maps[i].get<std::string>(), &kind))
+                throw ConfigError(pointer,
+                                  "expected a map name: time, lens, scatter_distance, "
+                                  "bifurcation, light_selection, point_on_light or "
+                                  "scatter_direction");
+            if (s.uses(kind)) throw ConfigError(pointer, "map listed twice");
+            s.enabled[static_cast<int>(kind)] = true;
+            pointers[static_cast<int>(kind)] = pointer;
         }
+    } else {
+        j.fail("maps", "expected \"auto\" or an array of map names");
     }
-    s.alpha = j.getFloat("alpha", s.alpha, Range::open(0, 1));
-    s.alphaFollowsEvidence = j.getBool("alpha_follows_evidence", s.alphaFollowsEvidence);
-    auto size = [&](const char* key, int fallback, int lo, int hi) {
-        return static_cast<int>(j.getInt(key, fallback, Range::closed(lo, hi)));
-    };
-    s.timeCells = size("time_cells", s.timeCells, 2, 4096);
-    s.scatterDistanceCells = size("scatter_distance_cells", s.scatterDistanceCells, 2, 4096);
-    s.lensSize = size("lens_size", s.lensSize, 2, 256);
-    s.pointOnLightSize = size("point_on_light_size", s.pointOnLightSize, 2, 256);
-    s.scatterDirectionSize = size("scatter_direction_size", s.scatterDirectionSize, 2, 256);
-    s.scatterDirectionBounces = size("scatter_direction_bounces", s.scatterDirectionBounces, 1, 2);
-    s.bifurcationVertices =
-        size("bifurcation_vertices", s.bifurcationVertices, 1, MapGuide::kMaxBifurcationVertices);
-    s.lightSelectionVertices = size("light_selection_vertices", s.lightSelectionVertices, 1,
-                                    MapGuide::kMaxLightSelectionVertices);
-    s.credit = j.getChoice("credit", {"downstream", "path"}, "downstream") == "path"
-                   ? Credit::Path
-                   : Credit::Downstream;
-    s.contributionFilter = j.getBool("contribution_filter", false);
-    s.bandRows = size("band_rows", s.bandRows, 1, 1 << 20);
-    s.bandWarmupRows = size("band_warmup_rows", s.bandWarmupRows, 0, 1 << 20);
+    s.alpha = j.real("alpha");
+    s.alphaFollowsEvidence = j.boolean("alpha_follows_evidence");
+    auto size = [&](const char* key) { return static_cast<int>(j.integer(key)); };
+    s.timeCells = size("time_cells");
+    s.scatterDistanceCells = size("scatter_distance_cells");
+    s.lensSize = size("lens_size");
+    s.pointOnLightSize = size("point_on_light_size");
+    s.scatterDirectionSize = size("scatter_direction_size");
+    s.scatterDirectionBounces = size("scatter_direction_bounces");
+    s.bifurcationVertices = size("bifurcation_vertices");
+    s.lightSelectionVertices = size("light_selection_vertices");
+    s.credit = j.choice("credit") == "path" ? Credit::Path : Credit::Downstream;
+    s.contributionFilter = j.boolean("contribution_filter");
+    s.bandRows = size("band_rows");
+    s.bandWarmupRows = size("band_warmup_rows");
     return std::make_unique<TaisIntegrator>(s, std::move(pointers));
 }
 
@@ -172,7 +215,7 @@ std::unique_ptr<TaisIntegrator> makeTaisIntegrator(ObjectReader& j, const PathSe
 
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addIntegrator(
-        "tais",
+        "tais", kTaisKeys,
         [](ObjectReader& json, const IntegratorContext& context) {
             std::unique_ptr<TaisIntegrator> tais = makeTaisIntegrator(json, context.path);
             const TaisIntegrator* integrator = tais.get();

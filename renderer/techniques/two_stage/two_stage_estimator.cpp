@@ -60,10 +60,10 @@ double SampleMoments::standardDeviation() const {
 }
 
 nlohmann::json TwoStageEstimator::parameters() const {
-    nlohmann::json p = {{"type", name()},
-                        {"samples", settings_.samples},
-                        {"peaks", settings_.peaks == PeakSource::Analytic ? "analytic" : "bsdf"}};
-    if (settings_.splits) p["splits"] = *settings_.splits;
+    nlohmann::json p = readParameters();
+    p["samples"] = settings_.samples;
+    p["splits"] = settings_.splitsFor(settings_.samples);
+    p["peaks"] = settings_.peaks == PeakSource::Analytic ? "analytic" : "bsdf";
     return p;
 }
 

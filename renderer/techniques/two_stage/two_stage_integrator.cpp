@@ -25,12 +25,11 @@ const char* allocationName(Allocation a) {
 }  // namespace
 
 nlohmann::json TwoStageIntegrator::parameters() const {
-    nlohmann::json p = estimator_.parameters();
+    nlohmann::json p = readParameters();
+    p.update(estimator_.parameters());
     p["type"] = name();
     p["allocation"] = allocationName(settings_.allocation);
     if (settings_.allocation == Allocation::Fixed) return p;
-    p["pilot_pixels"] = settings_.pilotPixels;
-    p["band_rows"] = settings_.bandRows;
     p["sigma_ave"] = sigmaAverage_;
     const uint64_t pixels = pixelsDone_.load();
     if (pixels > 0) {
