@@ -19,15 +19,6 @@ std::unique_ptr<DirectLightingEstimator> makeCoreEstimator(const std::string& st
     return std::make_unique<LightSampleEstimator>(lightSamples, strategy == "mis");
 }
 
-// An integrator's "estimator" object (default `mis` with one light sample).
-std::unique_ptr<DirectLightingEstimator> readEstimator(ObjectReader& json,
-                                                       const TechniqueRegistry& registry) {
-    const Json* e = json.rawOptional("estimator");
-    if (!e) return std::make_unique<LightSampleEstimator>(1, true);
-    ObjectReader ej(*e, json.pointerTo("estimator"));
-    return registry.makeEstimator(ej);
-}
-
 // `direct`: "strategy" (with "light_samples") names a core estimator; "estimator" any one.
 BuiltIntegrator makeDirect(ObjectReader& json, const IntegratorContext& context) {
     std::unique_ptr<DirectLightingEstimator> estimator;
@@ -37,7 +28,7 @@ BuiltIntegrator makeDirect(ObjectReader& json, const IntegratorContext& context)
                 json.fail(key,
                           "give either \"strategy\" (and \"light_samples\") or "
                           "\"estimator\", not both");
-        estimator = readEstimator(json, context.registry);
+        estimator = context.readEstimator(json);
     } else {
         const std::string strategy = json.getChoice("strategy", {"mis", "light", "bsdf"}, "mis");
         estimator = makeCoreEstimator(strategy, readLightSamples(json));
@@ -52,14 +43,15 @@ TechniqueRegistry coreRegistry() {
     r.addIntegrator(
         "path",
         [](ObjectReader&, const IntegratorContext& c) {
-            return withUniformPasses(PathTracer::withoutNextEventEstimation(c.path));
+            return withUniformPasses(std::make_unique<PathTracer<>>(
+                "path", c.path, std::make_unique<ScatteringOnlyEstimator>()));
         },
         /*rendersMedia=*/true);
     r.addIntegrator(
         "path_mis",
         [](ObjectReader& json, const IntegratorContext& c) {
             return withUniformPasses(
-                std::make_unique<PathTracer>(c.path, readEstimator(json, c.registry)));
+                std::make_unique<PathTracer<>>("path_mis", c.path, c.readEstimator(json)));
         },
         /*rendersMedia=*/true);
     r.addIntegrator("direct", makeDirect, /*rendersMedia=*/false);

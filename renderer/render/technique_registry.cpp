@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "config/type_table.h"
+#include "integrators/light_sample_estimator.h"
 #include "render/uniform_passes.h"
 
 namespace rr {
@@ -14,6 +15,14 @@ BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) 
                 return std::make_unique<UniformPasses>(in.scene, *samples, in.width, in.height,
                                                        in.spp, in.timeLimit, in.splattingFilm());
             }};
+}
+
+std::unique_ptr<DirectLightingEstimator> IntegratorContext::readEstimator(
+    ObjectReader& json) const {
+    const Json* e = json.rawOptional("estimator");
+    if (!e) return std::make_unique<LightSampleEstimator>(1, true);
+    ObjectReader ej(*e, json.pointerTo("estimator"));
+    return registry.makeEstimator(ej);
 }
 
 void TechniqueRegistry::addIntegrator(const std::string& type, IntegratorBuilder build,
