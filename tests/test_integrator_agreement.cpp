@@ -1,10 +1,16 @@
 // Different unbiased estimators of the same image must agree in mean: `path` vs `path_mis` on
-// the default scene (all light transport), and the three `direct` strategies on it (direct
-// lighting only). Differences are judged against the standard errors from the variance channel.
+// the default scene (all light transport), the three `direct` strategies on it (direct
+// lighting only), and `path_mis` assembled from its public pieces with a light-selection policy
+// of its own. Differences are judged against the standard errors from the variance channel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
+#include "integrators/path_tracer.h"
+#include "loader/factories.h"
 #include "support/chi2.h"
 #include "support/mean_agreement.h"
 #include "support/scene_testing.h"
@@ -137,6 +143,140 @@ TEST(IntegratorAgreement, DirectMisHasLowerErrorThanBsdfSamplingOnASmallLight) {
     };
     const TestRender bsdf = render("bsdf"), mis = render("mis");
     EXPECT_LT(imageMean(mis.film, 1).standardError, imageMean(bsdf.film, 1).standardError);
+}
+
+// Next-event estimation's lights picked uniformly, whatever the scene's selection: the policy of
+// renderer/README.md's worked example ("Building on path_mis").
+class UniformLights {
+  public:
+    explicit UniformLights(const Scene& scene) : lights_(scene.lights()) {}
+    const Light* select(float u, const Vec3& /*reference*/, float* pmf) const {
+        if (lights_.empty()) return nullptr;
+        *pmf = 1.0f / float(lights_.size());
+        return lights_[std::min(size_t(u * float(lights_.size())), lights_.size() - 1)];
+    }
+    float pmf(const Light& /*light*/, const Vec3& /*reference*/) const {
+        return 1.0f / float(lights_.size());
+    }
+
+  private:
+    std::span<const Light* const> lights_;
+};
+
+// Negative controls: uniform draws whose probability is reported as the scene's (power)
+// selection's by the draw and by pmf() (`Everywhere`), or by pmf() alone (`DensityOnly`), which
+// weighs emission found by BSDF samples against light sampling: what a guide whose lightPdf()
+// ignored its policy would do.
+enum class Misreport { Everywhere, DensityOnly };
+template <Misreport kWhere>
+class MisreportedUniformLights {
+  public:
+    explicit MisreportedUniformLights(const Scene& scene)
+        : uniform_(scene), selector_(scene.lightSelector()) {}
+    const Light* select(float u, const Vec3& reference, float* pmf) const {
+        const Light* light = uniform_.select(u, reference, pmf);
+        if (light && kWhere == Misreport::Everywhere) *pmf = selector_.pmf(*light, reference);
+        return light;
+    }
+    float pmf(const Light& light, const Vec3& reference) const {
+        return selector_.pmf(light, reference);
+    }
+
+  private:
+    UniformLights uniform_;
+    const LightSelector& selector_;
+};
+
+// Hands each guide the scene's own selector, which as a policy needs more than the scene to be
+// made from: path_mis assembled from the public pieces, MakeGuide included.
+struct SceneSelectorGuide {
+    StandardSamplingWith<const LightSelector&> operator()(const Scene& scene,
+                                                          const PixelSample& sample) const {
+        return {scene, sample, scene.lightSelector()};
+    }
+};
+
+// Two lights of unequal power under power selection: a large dim quad close above a diffuse
+// floor, which lights the image and which BSDF samples find too (MIS weights count), and a
+// small bright quad turned away from everything, which power selection picks with probability
+// 10/11 and uniform selection with 1/2. Path settings are the defaults, as renderAssembled()
+// builds them.
+const char* const kUnequalLights = R"({
+  "camera": { "type": "pinhole", "position": [0, 3, 3], "look_at": [0, 0, 0], "fov": 50 },
+  "render": { "resolution": [24, 24], "light_selection": "power" },
+  "integrator": { "type": "path_mis" },
+  "shapes": [
+    { "type": "quad", "corner": [-3, 0, 3], "edge_u": [6, 0, 0], "edge_v": [0, 0, -6],
+      "material": { "type": "lambert", "albedo": 0.7 } },
+    { "type": "quad", "corner": [-2, 0.2, -1], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2],
+      "emission": { "radiance": 1 } },
+    { "type": "quad", "corner": [0, 1, -3.2], "edge_u": [0, 0.2, 0], "edge_v": [0.2, 0, 0],
+      "emission": { "radiance": 1000 } }
+  ]
+})";
+
+// `scene` rendered by PathTracer<Guide, MakeGuide> in place of its own integrator, with the
+// estimator path_mis reads from an integrator object without one.
+template <class Guide, class MakeGuide = ConstructGuide<Guide>>
+TestRender renderAssembled(LoadedScene& scene, uint32_t spp, uint32_t seed) {
+    const PathSettings path;
+    const Json noEstimator = Json::object();
+    ObjectReader json(noEstimator, "/integrator");
+    BuiltIntegrator built = withUniformPasses(std::make_unique<PathTracer<Guide, MakeGuide>>(
+        "assembled", path, IntegratorContext{path, techniqueRegistry()}.readEstimator(json)));
+    built.integrator->prepare(*scene.scene);
+    scene.integrator = std::move(built.integrator);
+    scene.schedule = std::move(built.schedule);
+    return renderScene(scene, spp, seed);
+}
+
+// The scene's selector handed in as a policy draws and weighs exactly as path_mis: the same
+// pixels at the same seed.
+TEST(IntegratorAgreement, PathMisAssembledFromItsPiecesRendersItsPixels) {
+    const TestRender standard = renderScene(loadSceneText(kUnequalLights), 16, 7);
+    LoadedScene scene = loadSceneText(kUnequalLights);
+    const TestRender assembled =
+        renderAssembled<StandardSamplingWith<const LightSelector&>, SceneSelectorGuide>(scene, 16,
+                                                                                        7);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x)
+            ASSERT_EQ(standard.film.mean(x, y), assembled.film.mean(x, y)) << x << ", " << y;
+}
+
+// The largest |z| over the channels between the image means of `standard` and of kUnequalLights
+// rendered at `seed` with light-selection policy `Policy`, and those means in the worst channel.
+template <LightSelectionPolicy Policy>
+std::pair<double, std::string> disagreementWith(const TestRender& standard, uint32_t seed) {
+    LoadedScene scene = loadSceneText(kUnequalLights);
+    const TestRender other = renderAssembled<StandardSamplingWith<Policy>>(scene, 1024, seed);
+    std::pair<double, std::string> worst{0, ""};
+    for (int c = 0; c < 3; ++c) {
+        const Estimate a = imageMean(standard.film, c), b = imageMean(other.film, c);
+        const double z = std::abs(differenceZ(a, b));
+        if (z < worst.first) continue;
+        worst = {z, "channel " + std::to_string(c) + ": " + std::to_string(a.mean) + " ± " +
+                        std::to_string(a.standardError) + " vs " + std::to_string(b.mean) + " ± " +
+                        std::to_string(b.standardError)};
+    }
+    return worst;
+}
+
+// Uniform light selection through StandardSamplingWith estimates path_mis's image: its draws and
+// both lightPdf()s follow the policy, so the MIS weights stay right. Both negative controls
+// must fail the same test.
+TEST(IntegratorAgreement, UniformLightSelectionPolicyAgreesWithPathMis) {
+    const double z = zThreshold(sidakAlpha(0.01, 3));
+    const TestRender standard = renderScene(loadSceneText(kUnequalLights), 1024, 61);
+    const auto uniform = disagreementWith<UniformLights>(standard, 62);
+    EXPECT_LT(uniform.first, z) << "path_mis vs uniform selection, " << uniform.second;
+    const auto misreported =
+        disagreementWith<MisreportedUniformLights<Misreport::Everywhere>>(standard, 63);
+    EXPECT_GT(misreported.first, z)
+        << "uniform draws reported as power selection went unnoticed, " << misreported.second;
+    const auto misweighted =
+        disagreementWith<MisreportedUniformLights<Misreport::DensityOnly>>(standard, 64);
+    EXPECT_GT(misweighted.first, z)
+        << "MIS weights against power selection's density went unnoticed, " << misweighted.second;
 }
 
 }  // namespace

@@ -21,51 +21,33 @@
 // Shadow rays carry the transmittance of the media they cross. Shapes with an interior medium but
 // no material are index-matched boundaries: the path passes through them without a scattering
 // event. Scenes without media run a separately compiled walk that contains none of this.
+//
+// Both are PathTracer<StandardSampling>. A technique assembles its own path tracer from the same
+// walk with its own guide (how the path's decisions are made, standard_sampling.h), its own
+// light-selection policy (StandardSamplingWith<Policy>), or both, as PathTracer<Guide>; the
+// walk is a template on the guide, so each instance is compiled on its own and the standard one
+// pays nothing for the others (renderer/README.md, "Building on path_mis").
 #pragma once
 
 #include <algorithm>
 #include <memory>
+#include <string>
 
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
+#include "integrators/path_settings.h"
+#include "integrators/path_walk.h"
 #include "integrators/pixel_records.h"
+#include "integrators/standard_sampling.h"
 
 namespace rr {
 
-struct PathSettings {
-    int maxDepth = 16;
-    // Russian roulette from the first vertex, played only where the throughput-driven survival
-    // probability is below 0.25: the rule of best geometric-mean efficiency over the paper
-    // scenes (results/tables/rr_efficiency.md).
-    int rrDepth = 1;
-    // Russian roulette's survival probability: 0 for min(1, max throughput component × η²),
-    // else this fixed value (pbrt-v1's path integrator: 0.5).
-    float rrSurvival = 0;
-    // The throughput-driven survival probability is played only where it is below this (1:
-    // wherever it is below 1). A fixed rrSurvival is played always and ignores it.
-    float rrThreshold = 0.25f;
-
-    // Adds max_depth, rr_depth and the survival rule (rr_survival when fixed, else
-    // rr_threshold) to an integrator's parameters.
-    void addTo(nlohmann::json* parameters) const;
-};
-
-class PathTracer final : public SampleIntegrator {
+// Everything of a path tracer but the guide: its name, settings and next-event estimator, the
+// estimator's preparation and pixel records.
+class PathTracerBase : public SampleIntegrator {
   public:
-    // Hard cap on "unlimited" paths (max_depth −1): only pathological scenes (a closed glass
-    // shell with total internal reflection) ever reach it.
-    static constexpr int kDepthCap = 1000;
-
-    // `path`: next-event estimation by the `bsdf` estimator, which samples no light.
-    static std::unique_ptr<PathTracer> withoutNextEventEstimation(const PathSettings& settings);
-    // `path_mis`.
-    PathTracer(const PathSettings& settings, std::unique_ptr<DirectLightingEstimator> nee)
-        : PathTracer("path_mis", settings, std::move(nee)) {}
-
     std::string name() const override { return name_; }
     nlohmann::json parameters() const override;
-    Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
-                 RayCounters& rays) const override;
 
     uint32_t decisionRepeats() const override { return std::max(1u, nee_->decisionRepeats()); }
     // Refuses an estimator that cannot work in the scene's media.
@@ -77,16 +59,58 @@ class PathTracer final : public SampleIntegrator {
     void commitPixelRecords() override { records_.commit(); }
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override { return records_.channels(); }
 
-  private:
-    PathTracer(std::string name, const PathSettings& settings,
-               std::unique_ptr<DirectLightingEstimator> nee)
+  protected:
+    // `name`: the integrator's type as scenes name it; `nee`: next-event estimation at every
+    // non-specular vertex (ScatteringOnlyEstimator: none, as in `path`).
+    PathTracerBase(std::string name, const PathSettings& settings,
+                   std::unique_ptr<DirectLightingEstimator> nee)
         : name_(std::move(name)), settings_(settings), nee_(std::move(nee)) {}
 
+    // One path of pixel (x, y) with `guide`.
+    template <PathGuide Guide>
+    Rgb trace(const Scene& scene, Guide& guide, int x, int y, RayCounters& rays) const {
+        return tracePath(scene, guide, x, y, settings_, *nee_, rays, records_.slot(x, y));
+    }
+
+  private:
     std::string name_;
     PathSettings settings_;
     std::unique_ptr<DirectLightingEstimator> nee_;
     // Written by estimate() at pixels its caller renders alone (render_schedule.h).
     mutable PixelRecords records_;
 };
+
+// Makes each pixel sample's guide as Guide(scene, sample): for guides that need nothing else,
+// StandardSamplingWith<Policy> among them when the policy is made from the scene alone.
+template <class Guide>
+struct ConstructGuide {
+    Guide operator()(const Scene& scene, const PixelSample& sample) const {
+        return Guide(scene, sample);
+    }
+};
+
+// A path tracer whose decisions each pixel sample's guide makes, the guide made by
+// `makeGuide(scene, sample)`: a guide or policy that needs state of the integrator's gets it
+// from a MakeGuide object that holds it.
+template <PathGuide Guide = StandardSampling, class MakeGuide = ConstructGuide<Guide>>
+class PathTracer : public PathTracerBase {
+  public:
+    PathTracer(std::string name, const PathSettings& settings,
+               std::unique_ptr<DirectLightingEstimator> nee, MakeGuide makeGuide = {})
+        : PathTracerBase(std::move(name), settings, std::move(nee)),
+          makeGuide_(std::move(makeGuide)) {}
+
+    Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
+                 RayCounters& rays) const override {
+        Guide guide = makeGuide_(scene, sample);
+        return trace(scene, guide, x, y, rays);
+    }
+
+  private:
+    MakeGuide makeGuide_;
+};
+
+// `path` and `path_mis`, compiled once (path_tracer.cpp).
+extern template class PathTracer<StandardSampling>;
 
 }  // namespace rr

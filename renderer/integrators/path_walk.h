@@ -10,8 +10,8 @@
 //  - the direct-lighting estimator (run time) that makes next-event estimation at every
 //    non-specular vertex, and which decides how the emission the path itself finds counts.
 //
-// The header is included only by the files that run the walk (through tracePath); its
-// functions are templates defined here so the compiler can inline the steps into run().
+// Its functions are templates defined here so the compiler can inline the steps into run();
+// PathTracer (path_tracer.h) runs it, and so can a technique's own integrator (TAIS).
 #pragma once
 
 #include <algorithm>
@@ -19,7 +19,7 @@
 
 #include "integrators/light_sample_estimator.h"
 #include "integrators/medium_tracking.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_settings.h"
 #include "integrators/scattering_vertex.h"
 #include "integrators/standard_sampling.h"
 
@@ -38,7 +38,7 @@ class PathWalk {
           guide_(guide),
           sample_(guide.sample()),
           rays_(rays),
-          maxDepth_(settings.maxDepth < 0 ? PathTracer::kDepthCap : settings.maxDepth),
+          maxDepth_(settings.maxDepth < 0 ? PathSettings::kDepthCap : settings.maxDepth),
           rrDepth_(settings.rrDepth),
           rrSurvival_(settings.rrSurvival),
           rrThreshold_(settings.rrThreshold),

@@ -3,6 +3,17 @@
 // technique extends by hiding the members whose decisions it steers (TAIS's MapGuide). The walk
 // is a template on its guide, so StandardSampling compiles away entirely.
 //
+// Which light next-event estimation samples is StandardSampling's light-selection policy: the
+// scene's selector (/render/light_selection) in `path_mis`, any other in
+// StandardSamplingWith<Policy>. The policy serves sampleLight() and both lightPdf(), so the
+// selection drawn and the density every MIS weight divides by agree. It applies wherever the
+// path's estimator draws a light through the guide (ShadingPoint::sampleLight: `light`, `mis`,
+// RIS's light, light_proxy and mixture sources, PMC-HI with one component for all lights) or
+// asks the density of light sampling (emission a BSDF or phase sample finds, the
+// ShadingPoint's infiniteLightPdf and incidentEmission with selection). Estimators that draw
+// from one light they name (ShadingPoint::sampleLightOf: PMC-HI's per-light components;
+// two-stage sampling's single environment map) select no light, and no policy changes them.
+//
 // `vertex` is the index of the scattering vertex that makes a decision (0: the first one the
 // camera ray reaches); `radiance` is what the path has gathered before the decision, so a guide
 // can credit a decision with what follows it. A guide that changes a decision's density must
@@ -11,19 +22,53 @@
 #pragma once
 
 #include <concepts>
+#include <utility>
 
 #include "integrators/camera_ray.h"
+#include "scene/light_selector.h"
 #include "scene/lights/area_light.h"
 #include "scene/scene.h"
 
 namespace rr {
 
-class StandardSampling {
+// A light-selection policy: picks a light for next-event estimation from a reference point with
+// coordinate u, giving its probability, and tells the probability of any light; nullptr when
+// it picks none. select() and pmf() must agree, as LightSelector's do.
+template <class P>
+concept LightSelectionPolicy = requires(const P& p, float u, const Vec3& reference, float* pmf,
+                                        const Light& light) {
+    { p.select(u, reference, pmf) } -> std::same_as<const Light*>;
+    { p.pmf(light, reference) } -> std::same_as<float>;
+};
+
+// The scene's light selector (/render/light_selection): `path_mis`'s policy.
+class SceneLightSelection {
   public:
-    StandardSampling(const Scene& scene, const PixelSample& sample)
-        : scene_(scene), sample_(sample) {}
+    explicit SceneLightSelection(const Scene& scene) : selector_(scene.lightSelector()) {}
+    const Light* select(float u, const Vec3& reference, float* pmf) const {
+        return selector_.select(u, reference, pmf);
+    }
+    float pmf(const Light& light, const Vec3& reference) const {
+        return selector_.pmf(light, reference);
+    }
+
+  private:
+    const LightSelector& selector_;
+};
+
+template <LightSelectionPolicy Selection>
+class StandardSamplingWith {
+  public:
+    // The policy made from the scene (as each pixel sample's guide is made: keep it cheap),
+    // or given.
+    StandardSamplingWith(const Scene& scene, const PixelSample& sample) requires
+        std::constructible_from<Selection, const Scene&>
+        : StandardSamplingWith(scene, sample, Selection(scene)) {}
+    StandardSamplingWith(const Scene& scene, const PixelSample& sample, Selection selection)
+        : scene_(scene), sample_(sample), selection_(std::move(selection)) {}
     // The guide keeps a reference to the sample: a temporary would dangle.
-    StandardSampling(const Scene& scene, const PixelSample&& sample) = delete;
+    StandardSamplingWith(const Scene& scene, const PixelSample&& sample) = delete;
+    StandardSamplingWith(const Scene& scene, const PixelSample&& sample, Selection) = delete;
 
     // The camera ray through pixel (x, y) and its sampling weight (1 unless the guide warps
     // the camera's decisions).
@@ -43,7 +88,7 @@ class StandardSampling {
                      const LightReference& reference, float time, LightSample* ls, float* pdf,
                      const Light** chosen) {
         float selectPmf;
-        const Light* light = scene_.lightSelector().select(
+        const Light* light = selection_.select(
             sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}),
             reference.point, &selectPmf);
         if (!light) return false;
@@ -58,13 +103,12 @@ class StandardSampling {
     // Density with which sampleLight() at `vertex` picks `light` and its point `hit`.
     float lightPdf(uint32_t /*vertex*/, const AreaLight& light, const LightReference& reference,
                    const SurfaceHit& hit) const {
-        return scene_.lightSelector().pmf(light, reference.point) * light.pdf(reference.point, hit);
+        return selection_.pmf(light, reference.point) * light.pdf(reference.point, hit);
     }
     // The same for an infinite light seen in direction `w`.
     float lightPdf(uint32_t /*vertex*/, const Light& light, const LightReference& reference,
                    const Vec3& w) const {
-        return scene_.lightSelector().pmf(light, reference.point) *
-               light.directionPdf(reference, w);
+        return selection_.pmf(light, reference.point) * light.directionPdf(reference, w);
     }
     // The surface scattering decision (lobe, then direction) at `vertex`.
     bool sampleBsdf(uint32_t vertex, const Material& material, const ShadingContext& ctx,
@@ -94,7 +138,10 @@ class StandardSampling {
   private:
     const Scene& scene_;
     const PixelSample& sample_;
+    Selection selection_;
 };
+
+using StandardSampling = StandardSamplingWith<SceneLightSelection>;
 
 // The contract StandardSampling defines: what the path walk asks of a guide.
 template <class G>

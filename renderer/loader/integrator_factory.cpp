@@ -14,13 +14,6 @@ KeySpec lightSamplesKey() {
         .means("light samples per estimate");
 }
 
-KeySpec estimatorKey() {
-    return key("estimator")
-        .oneOf("estimator")
-        .defaultSays(R"(`{"type": "mis"}`)")
-        .means("the direct-lighting estimator of next-event estimation");
-}
-
 const KeyTable kPathKeys{
     "integrator/path",
     "all light transport by BSDF and phase-function sampling only: light counts where a path "
@@ -76,15 +69,6 @@ std::unique_ptr<DirectLightingEstimator> makeCoreEstimator(const std::string& st
     return std::make_unique<LightSampleEstimator>(lightSamples, strategy == "mis");
 }
 
-// An integrator's "estimator" object (default `mis` with one light sample).
-std::unique_ptr<DirectLightingEstimator> readEstimator(ObjectReader& json,
-                                                       const TechniqueRegistry& registry) {
-    const Json* e = json.rawOptional("estimator");
-    if (!e) return std::make_unique<LightSampleEstimator>(1, true);
-    ObjectReader ej(*e, json.pointerTo("estimator"));
-    return registry.makeEstimator(ej);
-}
-
 // `direct`: "strategy" (with "light_samples") names a core estimator; "estimator" any one.
 BuiltIntegrator makeDirect(ObjectReader& json, const IntegratorContext& context) {
     std::unique_ptr<DirectLightingEstimator> estimator;
@@ -94,7 +78,7 @@ BuiltIntegrator makeDirect(ObjectReader& json, const IntegratorContext& context)
                 json.fail(key,
                           "give either \"strategy\" (and \"light_samples\") or "
                           "\"estimator\", not both");
-        estimator = readEstimator(json, context.registry);
+        estimator = context.readEstimator(json);
     } else {
         const std::string strategy = json.choice("strategy");
         estimator =
@@ -109,14 +93,15 @@ TechniqueRegistry coreRegistry() {
     r.addIntegrator(
         "path", kPathKeys,
         [](ObjectReader&, const IntegratorContext& c) {
-            return withUniformPasses(PathTracer::withoutNextEventEstimation(c.path));
+            return withUniformPasses(std::make_unique<PathTracer<>>(
+                "path", c.path, std::make_unique<ScatteringOnlyEstimator>()));
         },
         /*rendersMedia=*/true);
     r.addIntegrator(
         "path_mis", kPathMisKeys,
         [](ObjectReader& json, const IntegratorContext& c) {
             return withUniformPasses(
-                std::make_unique<PathTracer>(c.path, readEstimator(json, c.registry)));
+                std::make_unique<PathTracer<>>("path_mis", c.path, c.readEstimator(json)));
         },
         /*rendersMedia=*/true);
     r.addIntegrator("direct", kDirectKeys, makeDirect, /*rendersMedia=*/false);

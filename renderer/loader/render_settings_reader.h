@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "config/json_reader.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_settings.h"
 #include "render/reconstruction_filter.h"
 #include "sampling/sampler.h"
 #include "scene/light_selector.h"

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "config/type_table.h"
+#include "integrators/light_sample_estimator.h"
 #include "render/uniform_passes.h"
 
 namespace rr {
@@ -16,6 +17,21 @@ BuiltIntegrator withUniformPasses(std::unique_ptr<SampleIntegrator> integrator) 
                                                        in.spp, in.timeLimit, in.splattingFilm());
             },
             /*uniformPasses=*/true};
+}
+
+KeySpec estimatorKey() {
+    return key("estimator")
+        .oneOf("estimator")
+        .defaultSays(R"(`{"type": "mis"}`)")
+        .means("the direct-lighting estimator of next-event estimation");
+}
+
+std::unique_ptr<DirectLightingEstimator> IntegratorContext::readEstimator(
+    ObjectReader& json) const {
+    const Json* e = json.rawOptional("estimator");
+    if (!e) return std::make_unique<LightSampleEstimator>(1, true);
+    ObjectReader ej(*e, json.pointerTo("estimator"));
+    return registry.makeEstimator(ej);
 }
 
 void TechniqueRegistry::addIntegrator(const std::string& type, const KeyTable& keys,

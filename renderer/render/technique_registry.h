@@ -15,7 +15,7 @@
 #include "config/json_reader.h"
 #include "integrators/direct_lighting_estimator.h"
 #include "integrators/integrator.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_settings.h"
 #include "render/reconstruction_filter.h"
 #include "render/render_schedule.h"
 
@@ -55,7 +55,14 @@ class TechniqueRegistry;
 struct IntegratorContext {
     const PathSettings& path;
     const TechniqueRegistry& registry;
+
+    // The integrator's "estimator" object, of any registered estimator type, as `path_mis`
+    // reads it: absent, `mis` with one light sample. Its key table must declare estimatorKey().
+    std::unique_ptr<DirectLightingEstimator> readEstimator(ObjectReader& json) const;
 };
+
+// The declaration of the "estimator" key that readEstimator reads.
+KeySpec estimatorKey();
 
 class TechniqueRegistry {
   public:
