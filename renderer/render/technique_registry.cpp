@@ -1,5 +1,6 @@
 #include "render/technique_registry.h"
 
+#include <cstring>
 #include <stdexcept>
 
 #include "config/type_table.h"
@@ -25,6 +26,20 @@ void TechniqueRegistry::addIntegrator(const std::string& type, IntegratorBuilder
 void TechniqueRegistry::addEstimator(const std::string& type, EstimatorBuilder build) {
     if (!estimators_.emplace(type, std::move(build)).second)
         throw std::logic_error("estimator type \"" + type + "\" registered twice");
+}
+
+void TechniqueRegistry::addDecisions(std::span<const Decision> decisions) {
+    for (const Decision& d : decisions) {
+        if (d.dimensions != 1 && d.dimensions != 2)
+            throw std::logic_error("decision \"" + std::string(d.name) + "\" has " +
+                                   std::to_string(d.dimensions) + " dimensions");
+        for (const Decision& taken : decisions_)
+            if (d.id == taken.id || std::strcmp(d.name, taken.name) == 0)
+                throw std::logic_error("decision \"" + std::string(d.name) + "\" (id " +
+                                       std::to_string(d.id) + ") clashes with \"" + taken.name +
+                                       "\" (id " + std::to_string(taken.id) + ")");
+        decisions_.push_back(d);
+    }
 }
 
 BuiltIntegrator TechniqueRegistry::makeIntegrator(ObjectReader& json,

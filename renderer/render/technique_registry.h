@@ -1,5 +1,6 @@
 // The integrators and direct-lighting estimators a scene can name, by type: the core ones
-// (loader/integrator_factory.cpp) and those each technique folder registers. A technique is one
+// (loader/integrator_factory.cpp) and those each technique folder registers, with the named
+// decisions the techniques make (sampling/decisions.h). A technique is one
 // folder, renderer/techniques/<name>/, whose registerTechnique(TechniqueRegistry&) adds its
 // entries, and one line in renderer/techniques/CMakeLists.txt (RENDERER_TECHNIQUES), from which
 // the build generates registerTechniques().
@@ -8,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "integrators/path_tracer.h"
 #include "render/reconstruction_filter.h"
 #include "render/render_schedule.h"
+#include "sampling/decisions.h"
 
 namespace rr {
 
@@ -63,6 +66,11 @@ class TechniqueRegistry {
     // loader refuses a scene with media for any other).
     void addIntegrator(const std::string& type, IntegratorBuilder build, bool rendersMedia);
     void addEstimator(const std::string& type, EstimatorBuilder build);
+    // The decisions a technique makes besides the standard ones. Their ids are hashed into
+    // every coordinate, so two decisions sharing one would draw the same coordinates:
+    // std::logic_error for an id or a name already taken, by a standard decision or another
+    // technique's, and for a dimension count other than 1 or 2.
+    void addDecisions(std::span<const Decision> decisions);
 
     // From a JSON object with a "type" key; ConfigError naming the pointer for an unknown
     // type or any bad or unknown key.
@@ -73,6 +81,8 @@ class TechniqueRegistry {
     std::vector<std::string> mediaIntegrators() const;
     // Every integrator type, in order.
     std::vector<std::string> integratorTypes() const;
+    // Every decision: the standard ones, then the techniques' in registration order.
+    std::span<const Decision> decisions() const { return decisions_; }
 
   private:
     struct IntegratorEntry {
@@ -81,6 +91,7 @@ class TechniqueRegistry {
     };
     std::map<std::string, IntegratorEntry> integrators_;
     std::map<std::string, EstimatorBuilder> estimators_;
+    std::vector<Decision> decisions_{kStandardDecisions.begin(), kStandardDecisions.end()};
 };
 
 // Adds every technique folder's entries (generated from RENDERER_TECHNIQUES).

@@ -132,10 +132,10 @@ class FixedPoint final : public ShadingPoint {
         return f * le * tr * (misWeight / density);
     }
     float decide1D(Decision d, uint32_t repeat, uint32_t) const override {
-        return uniform(uint64_t(d), repeat);
+        return uniform(uint64_t(d.id), repeat);
     }
     Vec2 decide2D(Decision d, uint32_t repeat, uint32_t) const override {
-        return uniform2(uint64_t(d) + 100, repeat);
+        return uniform2(uint64_t(d.id) + 100, repeat);
     }
     const Frame* frame() const override { return &frame_; }
     Vec3 position() const override { return Vec3(0.0f); }

@@ -9,6 +9,7 @@
 #include "sampling/warps.h"
 #include "scene/scene.h"
 #include "techniques/ris/reservoir.h"
+#include "techniques/ris/ris_decisions.h"
 
 namespace rr::ris {
 
@@ -49,7 +50,7 @@ uint32_t ceilCount(double x) {
 // vertex's ResampleCount decision (0: M, 1: N).
 uint32_t countAt(const ShadingPoint& point, double x, uint32_t repeat) {
     if (x == std::floor(x)) return static_cast<uint32_t>(x);
-    return roundRandomly(x, point.decide1D(Decision::ResampleCount, repeat, 2));
+    return roundRandomly(x, point.decide1D(kResampleCount, repeat, 2));
 }
 
 // The pilot's sample shape: this many samples of this many candidates per shading point, a
@@ -133,10 +134,10 @@ bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t 
         return true;
     }
     if (source_ == CandidateSource::Mixture) return drawFromMixture(point, repeat, repeats, c);
-    const Vec2 u = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+    const Vec2 u = point.decide2D(kCandidateDirection, repeat, repeats);
     const Frame* frame = point.frame();
     if (source_ == CandidateSource::Bsdf) {
-        const float uLobe = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+        const float uLobe = point.decide1D(kCandidateLobe, repeat, repeats);
         if (!point.sampleScattering(uLobe, u, &c->direction, &c->pdf)) return false;
     } else if (!frame) {  // a point in a medium: the whole sphere
         c->direction = squareToUniformSphere(u);
@@ -157,7 +158,7 @@ bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_
                                    Candidate* c) const {
     // The lower half of the coordinate picks light sampling, the upper half the BSDF, and
     // rescaled it is the BSDF's lobe coordinate.
-    const float u = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+    const float u = point.decide1D(kCandidateLobe, repeat, repeats);
     // Each draw's own density is not needed: the mixture's is evaluated below.
     float drawPdf;
     if (u < 0.5f) {
@@ -167,7 +168,7 @@ bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_
             return false;
         c->direction = ls.direction;
     } else {
-        const Vec2 uDirection = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+        const Vec2 uDirection = point.decide2D(kCandidateDirection, repeat, repeats);
         if (!point.sampleScattering(2 * u - 1, uDirection, &c->direction, &drawPdf)) return false;
     }
     // The mixture's density counts both ways of drawing the direction, each by the density of
@@ -204,7 +205,7 @@ void RisEstimator::estimate(ShadingPoint& point, const CandidateCounts& counts) 
             return drawCandidate(point, i * mMax + j, repeats, c);
         };
         auto select = [&](uint32_t j) {
-            return point.decide1D(Decision::ResampleSelect, i * mMax + j, repeats);
+            return point.decide1D(kResampleSelect, i * mMax + j, repeats);
         };
         Candidate y;
         float density;
@@ -225,7 +226,7 @@ void RisEstimator::measureCosts(ShadingPoint& point, CostTally* tally) const {
             Candidate c;
             if (!drawCandidate(point, repeat, repeats, &c)) continue;
             reservoirs[i].offer(c, c.target / c.pdf,
-                                point.decide1D(Decision::ResampleSelect, repeat, repeats));
+                                point.decide1D(kResampleSelect, repeat, repeats));
         }
     const Clock::time_point drawn = Clock::now();
     uint32_t finished = 0;

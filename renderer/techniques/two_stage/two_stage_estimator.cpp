@@ -7,6 +7,7 @@
 #include "scene/lights/environment_map.h"
 #include "techniques/two_stage/hierarchical_warp.h"
 #include "techniques/two_stage/partition.h"
+#include "techniques/two_stage/two_stage_decisions.h"
 
 namespace rr::two_stage {
 
@@ -131,8 +132,8 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
     for (uint32_t k = 0; k < searches; ++k) {
         Vec3 wi;
         float pdf;
-        if (!point.sampleScattering(point.decide1D(Decision::PeakLobe, k, searches),
-                                    point.decide2D(Decision::PeakDirection, k, searches), &wi,
+        if (!point.sampleScattering(point.decide1D(kPeakLobe, k, searches),
+                                    point.decide2D(kPeakDirection, k, searches), &wi,
                                     &pdf))
             continue;
         double x, y;

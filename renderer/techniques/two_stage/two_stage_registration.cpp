@@ -1,6 +1,7 @@
 // The `two_stage` estimator and integrator as scenes name them (configs/README.md).
 #include "config/json_reader.h"
 #include "render/technique_registry.h"
+#include "techniques/two_stage/two_stage_decisions.h"
 #include "techniques/two_stage/two_stage_integrator.h"
 
 namespace rr::two_stage {
@@ -52,6 +53,7 @@ BuiltIntegrator makeIntegrator(ObjectReader& json, const IntegratorContext&) {
 
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addEstimator("two_stage", makeEstimator);
+    registry.addDecisions(kDecisions);
     registry.addIntegrator("two_stage", makeIntegrator, /*rendersMedia=*/false);
 }
 
