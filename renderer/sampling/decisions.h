@@ -1,7 +1,8 @@
 // Every random decision a path makes has a name. A sample coordinate is addressed by
 // (decision, path vertex, repeat), so a technique can find — and replace — the coordinates
-// that feed one decision (TAIS's importance maps warp exactly these: time, lens, light
-// selection, point on light, scatter direction, bifurcation, scatter distance).
+// that feed one decision (importance maps over a decision's coordinates warp exactly these:
+// time, lens, light selection, point on light, scatter direction, bifurcation, scatter
+// distance).
 //
 // The standard path's decisions are here; a technique that makes decisions of its own declares
 // them in its folder (techniques/<name>/<name>_decisions.h) and lists them in its registration
@@ -27,7 +28,7 @@ struct Decision {
     static const Decision Lens;         // 2-D: point on the thin-lens aperture
     static const Decision LightSelect;  // 1-D: which light to sample for next-event estimation
     static const Decision LightPoint;   // 2-D: point (or direction) on the chosen light
-    // 1-D: which lobe (e.g. Fresnel reflect vs transmit: TAIS bifurcation)
+    // 1-D: which lobe (e.g. Fresnel reflect vs transmit: the path bifurcates)
     static const Decision BsdfLobe;
     static const Decision BsdfDirection;    // 2-D: direction within the chosen lobe
     static const Decision MediumDistance;   // 1-D: free-flight distance in a participating medium

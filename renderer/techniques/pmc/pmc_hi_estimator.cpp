@@ -120,8 +120,8 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
     const Vec2 u = point.decide2D(kMixtureDirection, repeat, repeats);
     if (component == kBsdf) {
         float pdf;
-        if (!point.sampleScattering(point.decide1D(kMixtureLobe, repeat, repeats), u,
-                                    &d->direction, &pdf))
+        if (!point.sampleScattering(point.decide1D(kMixtureLobe, repeat, repeats), u, &d->direction,
+                                    &pdf))
             return false;
     } else {
         d->direction =
@@ -143,7 +143,8 @@ bool PmcHiEstimator::drawLightPoint(ShadingPoint& point, uint32_t component, uin
     const Light* light = nullptr;
     if (oneForAllLights_) {
         float pdf;
-        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &pdf, &light) || !(pdf > 0))
+        if (!point.sampleLight(repeat, repeats, /*standIns=*/nullptr, &ls, &pdf, &light) ||
+            !(pdf > 0))
             return false;
         d->selectedLightPdf = pdf;
     } else {

@@ -47,7 +47,7 @@ uint32_t ceilCount(double x) {
 }
 
 // An integer count as it is; a fractional one rounded randomly by draw `repeat` of the
-// vertex's ResampleCount decision (0: M, 1: N).
+// vertex's resample_count decision (0: M, 1: N).
 uint32_t countAt(const ShadingPoint& point, double x, uint32_t repeat) {
     if (x == std::floor(x)) return static_cast<uint32_t>(x);
     return roundRandomly(x, point.decide1D(kResampleCount, repeat, 2));
@@ -104,6 +104,7 @@ nlohmann::json RisEstimator::parameters() const {
 }
 
 void RisEstimator::prepare(const Scene& scene, const std::string& pointer) {
+    if (source_ == CandidateSource::LightProxy) standIns_ = LightStandIns(scene.lights());
     if (source_ != CandidateSource::Mixture) return;
     for (const Light* light : scene.lights())
         if (!light->isInfinite())
@@ -124,9 +125,9 @@ uint32_t RisEstimator::decisionRepeats() const {
 bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                                  Candidate* c) const {
     if (fromLights()) {
-        const LightDraw draw =
-            source_ == CandidateSource::LightProxy ? LightDraw::Proxy : LightDraw::Exact;
-        if (!point.sampleLight(repeat, repeats, draw, &c->light, &c->pdf, &c->emitter))
+        const LightStandIns* standIns =
+            source_ == CandidateSource::LightProxy ? &standIns_ : nullptr;
+        if (!point.sampleLight(repeat, repeats, standIns, &c->light, &c->pdf, &c->emitter))
             return false;
         c->direction = c->light.direction;
         c->scattering = point.scattering(c->direction);
@@ -164,7 +165,7 @@ bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_
     if (u < 0.5f) {
         LightSample ls;
         const Light* drawnLight;
-        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &drawPdf, &drawnLight))
+        if (!point.sampleLight(repeat, repeats, /*standIns=*/nullptr, &ls, &drawPdf, &drawnLight))
             return false;
         c->direction = ls.direction;
     } else {
@@ -187,8 +188,9 @@ Rgb RisEstimator::finish(ShadingPoint& point, const Candidate& c, float density)
         float survival;
         const Rgb tr = point.visibility(c.light, c.emitter->isInfinite(), &survival);
         if (tr.isBlack()) return Rgb(0.0f);
-        const Rgb le = source_ == CandidateSource::LightProxy ? c.emitter->exactRadiance(c.light)
-                                                              : c.light.radiance;
+        const LightStandIn* standIn =
+            source_ == CandidateSource::LightProxy ? standIns_.of(*c.emitter) : nullptr;
+        const Rgb le = standIn ? standIn->exactRadiance(c.light) : c.light.radiance;
         return point.contribution(c.scattering, le, tr, 1.0f, density);
     }
     const Rgb le = point.incidentEmission(c.direction);
