@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "scene/scene_features.h"
 #include "support/chi2.h"
 #include "support/scene_testing.h"
 
@@ -148,7 +149,7 @@ double coveredFraction(const Scene& scene, int px, int py, const MovingHitTest& 
 void expectMotionBlurMatchesQuadrature(const LoadedScene& scene, double radiance,
                                        const MovingHitTest& hits) {
     const TestRender r = renderScene(scene, 256);
-    ASSERT_TRUE(scene.scene->features().motionBlur);
+    ASSERT_TRUE(sceneFeatures(*scene.scene).motionBlur);
     double expectedTotal = 0;
     Film expected(r.film.width(), r.film.height());
     for (int y = 0; y < r.film.height(); ++y)

@@ -553,7 +553,7 @@ TEST_P(GalileoProbe, LookupsAreTheFilesTexels) {
     }
 }
 
-// sampleProxy, RIS's stand-in (blocks of 10 × 10 texels on this map): its pdf is the density of
+// sampleStandIn, RIS's stand-in (blocks of 10 × 10 texels on this map): its pdf is the density of
 // its directions, so E[L/pdf] = ∫ L dω over the map, both with the exact radiance (what RIS's f
 // uses) and with the stand-in's own (ĝ's: a block's solid-angle mean carries the block's
 // integral). z-tests of the means of 2²⁰ samples (luminance); Šidák over 2 layouts × 2 means.
@@ -567,7 +567,7 @@ ProxyMean proxyMean(const EnvironmentMap& map, const std::function<double(const 
     double sum = 0, sumSquares = 0;
     for (int i = 0; i < kDraws; ++i) {
         LightSample ls;
-        if (!map.sampleProxy(Vec3(0.0f), uniform2(31, uint64_t(i)), 0, &ls)) continue;
+        if (!map.sampleStandIn(Vec3(0.0f), uniform2(31, uint64_t(i)), 0, &ls)) continue;
         const double x = f(ls);
         sum += x;
         sumSquares += x * x;

@@ -1,9 +1,9 @@
-// Light::invertSample, the inverse of Light::sample (TAIS's point-on-light importance map lives
-// on the uniform coordinates u that sample() warps, and MIS needs the u behind a point found by
-// BSDF sampling): round trips u → sample(reference, u) → invertSample(reference, direction,
-// position) → u' for every light that inverts, from several reference points; the lights that
-// cannot invert refuse; and negative controls (the wrong reference point, the wrong rotation)
-// that the round-trip check must reject.
+// InvertibleLight::invertSample (scene/invertible_light.h), the inverse of Light::sample (TAIS's
+// point-on-light importance map lives on the uniform coordinates u that sample() warps, and MIS
+// needs the u behind a point found by BSDF sampling): round trips u → sample(reference, u) →
+// invertSample(reference, direction, position) → u' for every light that inverts, from several
+// reference points; the lights that cannot invert refuse; and negative controls (the wrong
+// reference point, the wrong rotation) that the round-trip check must reject.
 //
 // The check, per u for which sample() succeeds: invertSample succeeds, and either
 //  - u' = u within a tolerance per set-up (comments there: the direction of a float point seen
@@ -28,6 +28,7 @@
 #include "io/rgb_image_io.h"
 #include "loader/asset_resolver.h"
 #include "math/frame.h"
+#include "scene/invertible_light.h"
 #include "scene/lights/area_light.h"
 #include "scene/lights/constant_environment.h"
 #include "scene/lights/env_layout.h"
@@ -104,7 +105,7 @@ struct RoundTrips {
 
 // Samples `light` from `reference` and inverts with `inverse` from `inverseReference` (the
 // same, except in negative controls).
-RoundTrips roundTrips(const Light& light, const Vec3& reference, const Light& inverse,
+RoundTrips roundTrips(const Light& light, const Vec3& reference, const InvertibleLight& inverse,
                       const Vec3& inverseReference, float tolerance, uint64_t seed) {
     RoundTrips r;
     for (const Vec2& u : stratifiedU(seed)) {
@@ -207,7 +208,7 @@ TEST(LightInversion, QuadAndDiskRoundTrips) {
 // Uniform sphere sampling; u.x = (1 − z)/2 is exact up to the rounding of z: tolerance 1e-6.
 TEST(LightInversion, ConstantEnvironmentRoundTrips) {
     ConstantEnvironment light(Rgb(1.0f));
-    EXPECT_TRUE(light.canInvertSample());
+    EXPECT_TRUE(invertibleLight(light));
     light.preprocess(Vec3(0.0f), 2.0f);
     for (const Vec3& reference : {Vec3(0.0f), Vec3(0.5f, -1, 0.3f)}) {
         expectRoundTrips(roundTrips(light, reference, light, reference, 1e-6f, 4),
@@ -336,25 +337,23 @@ TEST(LightInversion, LightsWithoutAnInverseRefuse) {
     Vec2 u;
     const Vec3 reference(0, 0, 0), direction(0, 0, 1), point(0, 0, 3);
     const PointLight pointLight(point, Rgb(1.0f));
-    EXPECT_FALSE(pointLight.invertSample(reference, direction, point, &u)) << "point light";
-    EXPECT_FALSE(pointLight.canInvertSample());
+    EXPECT_FALSE(invertibleLight(pointLight)) << "point light";
     const SpotLight spot(point, Vec3(0, 0, -1), Rgb(1.0f), 0.5f, 0.3f);
-    EXPECT_FALSE(spot.invertSample(reference, direction, point, &u)) << "spot light";
-    EXPECT_FALSE(spot.canInvertSample());
+    EXPECT_FALSE(invertibleLight(spot)) << "spot light";
 
     const std::vector<Vec3> square = {Vec3(-1, -1, 3), Vec3(1, -1, 3), Vec3(1, 1, 3),
                                       Vec3(-1, 1, 3)};
     const Polygon polygon(square);
     const AreaLight polygonLight(&polygon, Rgb(1.0f), true);
     EXPECT_FALSE(polygonLight.invertSample(reference, direction, point, &u)) << "polygon";
-    EXPECT_FALSE(polygonLight.canInvertSample());
+    EXPECT_FALSE(invertibleLight(polygonLight));
     MeshData mesh;
     mesh.positions = square;
     mesh.indices = {0, 1, 2, 0, 2, 3};
     const TriangleMesh triangles(mesh);
     const AreaLight meshLight(&triangles, Rgb(1.0f), true);
     EXPECT_FALSE(meshLight.invertSample(reference, direction, point, &u)) << "triangle mesh";
-    EXPECT_FALSE(meshLight.canInvertSample());
+    EXPECT_FALSE(invertibleLight(meshLight));
 
     // Moving shapes: their samples depend on the time, which the inverse is not given.
     Sphere sphere(Vec3(0, 0, 4), 1.0f);
@@ -364,10 +363,10 @@ TEST(LightInversion, LightsWithoutAnInverseRefuse) {
          {static_cast<Shape*>(&sphere), static_cast<Shape*>(&quad), static_cast<Shape*>(&disk)}) {
         const AreaLight light(shape, Rgb(1.0f), true);
         EXPECT_TRUE(light.invertSample(reference, direction, point, &u)) << "static";
-        EXPECT_TRUE(light.canInvertSample()) << "static";
+        EXPECT_TRUE(invertibleLight(light)) << "static";
         shape->setMotion(Vec3(0.1f, 0, 0));
         EXPECT_FALSE(light.invertSample(reference, direction, point, &u)) << "moving";
-        EXPECT_FALSE(light.canInvertSample()) << "moving";
+        EXPECT_FALSE(invertibleLight(light)) << "moving";
     }
 }
 

@@ -371,7 +371,7 @@ TEST_P(MediaScenes, AbsorbingSceneMediumAttenuatesAnEmitter) {
         "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 50},
         "shapes": [{"type": "quad", "corner": [-10, -10, -1], "edge_u": [20, 0, 0],
                     "edge_v": [0, 20, 0], "emission": {"radiance": [2, 3, 4]}}]})");
-    ASSERT_TRUE(scene.scene->features().media);
+    ASSERT_TRUE(scene.scene->hasMedia());
     const TestRender r = renderScene(scene, 256);
     const Film expected = pixelQuadrature(*scene.scene, [](const Ray& ray) {
         const double d = (ray.origin.z + 1) / -ray.direction.z;
@@ -603,8 +603,8 @@ TEST(MediaCost, VacuumMediaRenderBitIdenticallyToNoMedia) {
         vacuumOverrides.push_back("/integrator/type=" + integrator);
         const LoadedScene plain = loadSceneFile("cornell_spheres.json", plainOverrides);
         const LoadedScene vacuum = loadSceneFile("cornell_spheres.json", vacuumOverrides);
-        ASSERT_FALSE(plain.scene->features().media);
-        ASSERT_TRUE(vacuum.scene->features().media);
+        ASSERT_FALSE(plain.scene->hasMedia());
+        ASSERT_TRUE(vacuum.scene->hasMedia());
         expectIdentical(renderScene(plain, 16, 5).film, renderScene(vacuum, 16, 5).film);
     }
 }

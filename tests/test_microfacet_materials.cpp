@@ -324,7 +324,7 @@ TEST(Peaks, MirrorPeakIsALocalMaximumOfNarrowLobes) {
         for (double theta : {0.0, 30.0, 60.0, 120.0}) {
             const Vec3 wo = directionFromDegrees(theta, 25);
             LobePeaks peaks;
-            n.material->peaks(kCtx, wo, &peaks);
+            lobePeakSource(*n.material)->peaks(kCtx, wo, &peaks);
             ASSERT_EQ(peaks.count, 1) << n.name;
             const Vec3 peak = peaks.directions[0];
             EXPECT_EQ(peak, mirrorOf(wo)) << n.name;
@@ -400,9 +400,6 @@ class WithPdf final : public Material {
                 BsdfSample* out) const override {
         return m_.sample(c, wo, u, u2, out);
     }
-    void peaks(const ShadingContext& c, const Vec3& wo, LobePeaks* out) const override {
-        m_.peaks(c, wo, out);
-    }
     uint8_t lobes() const override { return m_.lobes(); }
 
   private:
@@ -462,9 +459,6 @@ class DecliningLambert final : public Material {
     bool sample(const ShadingContext& c, const Vec3& wo, float u, Vec2 u2,
                 BsdfSample* out) const override {
         return u >= declined_ && lambert_.sample(c, wo, u, u2, out);
-    }
-    void peaks(const ShadingContext& c, const Vec3& wo, LobePeaks* out) const override {
-        lambert_.peaks(c, wo, out);
     }
     uint8_t lobes() const override { return lambert_.lobes(); }
 

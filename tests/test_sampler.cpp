@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "loader/factories.h"
 #include "sampling/hash.h"
 #include "sampling/sampler.h"
 #include "support/chi2.h"
@@ -289,6 +291,48 @@ const DecisionSite kSites[] = {
     {Decision::LightPoint, 2, 1, 3},
 };
 
+// A decision's id is hashed into every coordinate it draws: the standard decisions and those the
+// techniques register keep the ids (and dimensions) every image so far was made with, and no two
+// share an id or a name.
+TEST(Decisions, KeepTheirIdsAndShareNone) {
+    // By id.
+    const std::vector<std::string> names = {"film_position",
+                                            "time",
+                                            "lens",
+                                            "light_select",
+                                            "light_point",
+                                            "bsdf_lobe",
+                                            "bsdf_direction",
+                                            "medium_distance",
+                                            "russian_roulette",
+                                            "resample_count",
+                                            "resample_select",
+                                            "candidate_lobe",
+                                            "candidate_direction",
+                                            "peak_lobe",
+                                            "peak_direction",
+                                            "mixture_count",
+                                            "mixture_lobe",
+                                            "mixture_direction"};
+    const std::vector<int> dimensions = {2, 1, 2, 1, 2, 1, 2, 1, 1, 1, 1, 1, 2, 1, 2, 1, 1, 2};
+    std::vector<std::string> registeredNames(names.size());
+    std::vector<int> registeredDimensions(names.size());
+    for (const Decision& d : techniqueRegistry().decisions()) {
+        ASSERT_LT(d.id, names.size()) << d.name;
+        EXPECT_TRUE(registeredNames[d.id].empty()) << d.name << " shares id " << int(d.id);
+        registeredNames[d.id] = d.name;
+        registeredDimensions[d.id] = d.dimensions;
+    }
+    EXPECT_EQ(registeredNames, names);
+    EXPECT_EQ(registeredDimensions, dimensions);
+
+    // Negative controls: a technique's decision may take neither a standard id nor a name.
+    TechniqueRegistry registry;
+    EXPECT_THROW(registry.addDecisions(std::array{Decision{Decision::Time.id, 1, "my_time"}}),
+                 std::logic_error);
+    EXPECT_THROW(registry.addDecisions(std::array{Decision{200, 1, "time"}}), std::logic_error);
+}
+
 TEST_P(EachSampler, SameCoordinatesGiveTheSameValue) {
     const Sampler a(type(), 7, 16), b(type(), 7, 16);
     for (uint32_t pixel = 0; pixel < 200; pixel += 7)
@@ -477,7 +521,7 @@ TEST_P(EachStructuredSampler, OneDimensionalSetsAreStratified) {
                     const double spread = shiftedStrataSpread(xs);
                     ASSERT_LT(spread, 1.0)
                         << name() << ", set size " << n << ", pixel " << pixel << ", set " << set
-                        << ", decision " << decisionName(site.decision);
+                        << ", decision " << site.decision.name;
                     if (type() == SamplerType::Hammersley) {  // a rotated lattice {o + k/n}
                         ASSERT_LT(spread, 1e-3) << "set size " << n << ", pixel " << pixel;
                     }

@@ -22,6 +22,7 @@
 #include "render/render_output.h"
 #include "render/renderer.h"
 #include "renderer_version.h"
+#include "scene/scene_features.h"
 
 namespace rr {
 
@@ -165,7 +166,7 @@ void addMetadata(const RenderCommandOptions& o, const PreparedRender& p, const R
     a["renderer.renderTime"] = stats.seconds;
     a["renderer.prepareTime"] = p.loaded.prepareSeconds;
     a["renderer.peakMemoryMiB"] = peakResidentMiB();
-    a["renderer.features"] = featureList(p.loaded.scene->features());
+    a["renderer.features"] = featureList(sceneFeatures(*p.loaded.scene));
     a["renderer.rays.camera"] = static_cast<double>(stats.rays.camera);
     a["renderer.rays.extension"] = static_cast<double>(stats.rays.extension);
     a["renderer.rays.shadow"] = static_cast<double>(stats.rays.shadow);
@@ -235,7 +236,7 @@ int reportBadInput(const RenderCommandOptions& o, const Reporter& report,
 // (estimandOf): the harness's reference key.
 int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
     const RenderSettings& settings = p.loaded.render;
-    const std::string features = featureList(p.loaded.scene->features());
+    const std::string features = featureList(sceneFeatures(*p.loaded.scene));
     const std::string sceneSha = sha256Hex(p.document.dump());
     const std::string estimandSha = sha256Hex(estimandOf(p.document).dump());
     if (o.json) {

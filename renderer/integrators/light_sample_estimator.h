@@ -37,7 +37,7 @@ void LightSampleEstimator::estimateAt(Point& point) const {
         LightSample ls;
         float pdf;
         const Light* light;
-        if (!point.sampleLight(r, lightSamples_, LightDraw::Exact, &ls, &pdf, &light)) continue;
+        if (!point.sampleLight(r, lightSamples_, /*standIns=*/nullptr, &ls, &pdf, &light)) continue;
         const Rgb f = point.scattering(ls.direction);
         if (f.isBlack()) continue;
         float survival;

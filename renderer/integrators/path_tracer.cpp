@@ -12,7 +12,7 @@ nlohmann::json PathTracerBase::parameters() const {
 }
 
 void PathTracerBase::prepare(const Scene& scene) {
-    if (scene.features().media && !nee_->worksInMedia())
+    if (scene.hasMedia() && !nee_->worksInMedia())
         throw ConfigError("/integrator/estimator/type",
                           "estimator '" + nee_->name() +
                               "' samples directions and cannot render participating media");

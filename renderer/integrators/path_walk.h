@@ -260,7 +260,7 @@ Rgb tracePath(const Scene& scene, Guide& guide, int x, int y, const PathSettings
     float weight;
     const Ray ray = guide.cameraRay(x, y, &weight);
     ++rays.camera;
-    if (scene.features().media)
+    if (scene.hasMedia())
         return PathWalk<true, Guide>(scene, guide, rays, settings, nee, ray, weight, pixel).run();
     return PathWalk<false, Guide>(scene, guide, rays, settings, nee, ray, weight, pixel).run();
 }

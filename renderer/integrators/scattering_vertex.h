@@ -83,10 +83,10 @@ class SurfaceVertex final : public ShadingPoint {
           medium_(medium),
           scatterSamples_(scatterSamples) {}
 
-    bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* ls, float* pdf,
-                     const Light** light) override {
-        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, lightReference(), hit_.time,
-                                      ls, pdf, light);
+    bool sampleLight(uint32_t repeat, uint32_t count, const LightStandIns* standIns,
+                     LightSample* ls, float* pdf, const Light** light) override {
+        return out_.guide.sampleLight(out_.vertex, repeat, count, standIns, lightReference(),
+                                      hit_.time, ls, pdf, light);
     }
     Rgb scattering(const Vec3& wi) const override {
         return material_.eval(ctx_, wo_, frame_.toLocal(wi));
@@ -114,12 +114,13 @@ class SurfaceVertex final : public ShadingPoint {
     }
     const Frame* frame() const override { return &frame_; }
     Vec3 position() const override { return hit_.position; }
-    bool scatteringShape(ScatteringShape* out) const override {
+    bool scatteringShape(const LobePeakSources* peaks, ScatteringShape* out) const override {
         out->normal = wo_.z < 0 ? -frame_.n : frame_.n;
         out->transmits = material_.hasTransmission();
-        LobePeaks local;
-        material_.peaks(ctx_, wo_, &local);
         out->peaks.count = 0;
+        if (!peaks) return true;
+        LobePeaks local;
+        peaks->of(material_)->peaks(ctx_, wo_, &local);
         for (int i = 0; i < local.count; ++i)
             out->peaks.add(frame_.toWorld(local.directions[i]));
         return true;
@@ -195,10 +196,10 @@ class MediumVertex final : public ShadingPoint {
                  const Medium& medium)
         : out_(out), position_(position), time_(time), wo_(wo), medium_(medium) {}
 
-    bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* ls, float* pdf,
-                     const Light** light) override {
-        return out_.guide.sampleLight(out_.vertex, repeat, count, draw, position_, time_, ls, pdf,
-                                      light);
+    bool sampleLight(uint32_t repeat, uint32_t count, const LightStandIns* standIns,
+                     LightSample* ls, float* pdf, const Light** light) override {
+        return out_.guide.sampleLight(out_.vertex, repeat, count, standIns, position_, time_, ls,
+                                      pdf, light);
     }
     Rgb scattering(const Vec3& wi) const override {
         const float p = medium_.phase().eval(wo_, wi);
@@ -229,7 +230,7 @@ class MediumVertex final : public ShadingPoint {
     }
     const Frame* frame() const override { return nullptr; }
     Vec3 position() const override { return position_; }
-    bool scatteringShape(ScatteringShape*) const override { return false; }
+    bool scatteringShape(const LobePeakSources*, ScatteringShape*) const override { return false; }
     bool sampleScattering(float, const Vec2& u, Vec3* wi, float* pdf) const override {
         *pdf = medium_.phase().sample(wo_, u, wi);
         return *pdf > 0;

@@ -12,13 +12,16 @@
 #include "math/rgb.h"
 #include "sampling/sampler.h"
 #include "scene/light.h"
+#include "scene/light_stand_in.h"
+#include "scene/lobe_peaks.h"
 #include "scene/material.h"
 
 namespace rr {
 
 // Where a surface point scatters, for estimators that partition the sphere of directions
 // (two-stage sampling): the shading normal on the viewer's side, whether scattering also
-// reaches the other side (transmission), and the directions where its lobes peak (world).
+// reaches the other side (transmission), and, when asked for, the directions where its lobes
+// peak (world).
 struct ScatteringShape {
     Vec3 normal;
     bool transmits = false;
@@ -43,11 +46,12 @@ class ShadingPoint {
     virtual ~ShadingPoint() = default;
 
     // Draw `repeat` of `count` of a light and a point on it (the light-selection and
-    // light-point decisions of this vertex), from the light's own sampler or its stand-in
-    // (`draw`): the sample, its density (selection × point, per solid angle) and the light.
-    // False when no light was sampled.
-    virtual bool sampleLight(uint32_t repeat, uint32_t count, LightDraw draw, LightSample* sample,
-                             float* pdf, const Light** light) = 0;
+    // light-point decisions of this vertex), from the light's stand-in in `standIns` when it has
+    // one there, from its own sampler otherwise (standIns nullptr: always): the sample, its
+    // density (selection × point, per solid angle) and the light. False when no light was
+    // sampled.
+    virtual bool sampleLight(uint32_t repeat, uint32_t count, const LightStandIns* standIns,
+                             LightSample* sample, float* pdf, const Light** light) = 0;
     // f(wo, wi)·|cos θi| at a surface; the phase function (grey) in a medium.
     virtual Rgb scattering(const Vec3& wi) const = 0;
     // The density with which this vertex's own scattering sample (BSDF or phase function,
@@ -81,8 +85,10 @@ class ShadingPoint {
     float lightDirectionPdf(const Light& light, const Vec3& wi) const {
         return light.directionPdf(lightReference(), wi);
     }
-    // The shape of the surface's scattering; false in a medium.
-    virtual bool scatteringShape(ScatteringShape* out) const = 0;
+    // The shape of the surface's scattering, its peaks from `peaks` (the scene's materials'
+    // lobe peaks, which the caller checked this point's material has; nullptr: none asked for);
+    // false in a medium.
+    virtual bool scatteringShape(const LobePeakSources* peaks, ScatteringShape* out) const = 0;
     // A direction drawn from the vertex's own scattering distribution (BSDF or phase
     // function) with the given coordinates, and its density; false when none was drawn or the
     // draw is specular (no estimator that weighs directions can use it).

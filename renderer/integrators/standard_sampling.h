@@ -26,6 +26,7 @@
 
 #include "integrators/camera_ray.h"
 #include "scene/light_selector.h"
+#include "scene/light_stand_in.h"
 #include "scene/lights/area_light.h"
 #include "scene/scene.h"
 
@@ -82,18 +83,19 @@ class StandardSamplingWith {
         *warpPdf = 1;
         return sample_.get1D(Decision::MediumDistance, vertex);
     }
-    // Draw `repeat` of `count` of next-event estimation's light and the point on it, with the
+    // Draw `repeat` of `count` of next-event estimation's light and the point on it (from the
+    // light's stand-in in `standIns` when it has one: ShadingPoint::sampleLight), with the
     // density of the pair.
-    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                     const LightReference& reference, float time, LightSample* ls, float* pdf,
-                     const Light** chosen) {
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count,
+                     const LightStandIns* standIns, const LightReference& reference, float time,
+                     LightSample* ls, float* pdf, const Light** chosen) {
         float selectPmf;
         const Light* light = selection_.select(
             sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}),
             reference.point, &selectPmf);
         if (!light) return false;
         const Vec2 u = sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count});
-        if (!light->draw(draw, reference, u, time, ls)) return false;
+        if (!sampleLightOrStandIn(*light, standIns, reference, u, time, ls)) return false;
         *pdf = selectPmf * ls->pdf;
         *chosen = light;
         return true;
@@ -153,9 +155,7 @@ concept PathGuide = requires(G& g, const G& cg, int pixel, uint32_t index, float
                              const PhaseFunction& phase, Vec3* wi) {
     { g.cameraRay(pixel, pixel, out) } -> std::same_as<Ray>;
     { g.flightCoordinate(index, radiance, out) } -> std::same_as<float>;
-    {
-        g.sampleLight(index, index, index, LightDraw::Exact, v, 0.0f, ls, out, chosen)
-        } -> std::same_as<bool>;
+    { g.sampleLight(index, index, index, nullptr, v, 0.0f, ls, out, chosen) } -> std::same_as<bool>;
     g.lightContribution(index, radiance);
     { cg.lightPdf(index, areaLight, v, hit) } -> std::same_as<float>;
     { cg.lightPdf(index, light, v, v) } -> std::same_as<float>;

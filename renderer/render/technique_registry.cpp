@@ -1,5 +1,6 @@
 #include "render/technique_registry.h"
 
+#include <cstring>
 #include <stdexcept>
 
 #include "config/type_table.h"
@@ -44,6 +45,20 @@ void TechniqueRegistry::addEstimator(const std::string& type, const KeyTable& ke
                                      EstimatorBuilder build) {
     if (!estimators_.emplace(type, EstimatorEntry{std::move(build), &keys}).second)
         throw std::logic_error("estimator type \"" + type + "\" registered twice");
+}
+
+void TechniqueRegistry::addDecisions(std::span<const Decision> decisions) {
+    for (const Decision& d : decisions) {
+        if (d.dimensions != 1 && d.dimensions != 2)
+            throw std::logic_error("decision \"" + std::string(d.name) + "\" has " +
+                                   std::to_string(d.dimensions) + " dimensions");
+        for (const Decision& taken : decisions_)
+            if (d.id == taken.id || std::strcmp(d.name, taken.name) == 0)
+                throw std::logic_error("decision \"" + std::string(d.name) + "\" (id " +
+                                       std::to_string(d.id) + ") clashes with \"" + taken.name +
+                                       "\" (id " + std::to_string(taken.id) + ")");
+        decisions_.push_back(d);
+    }
 }
 
 BuiltIntegrator TechniqueRegistry::makeIntegrator(ObjectReader& json,

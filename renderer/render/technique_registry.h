@@ -1,5 +1,6 @@
 // The integrators and direct-lighting estimators a scene can name, by type: the core ones
-// (loader/integrator_factory.cpp) and those each technique folder registers. A technique is one
+// (loader/integrator_factory.cpp) and those each technique folder registers, with the named
+// decisions the techniques make (sampling/decisions.h). A technique is one
 // folder, renderer/techniques/<name>/, whose registerTechnique(TechniqueRegistry&) adds its
 // entries, and one line in renderer/techniques/CMakeLists.txt (RENDERER_TECHNIQUES), from which
 // the build generates registerTechniques().
@@ -8,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "integrators/path_settings.h"
 #include "render/reconstruction_filter.h"
 #include "render/render_schedule.h"
+#include "sampling/decisions.h"
 
 namespace rr {
 
@@ -80,6 +83,11 @@ class TechniqueRegistry {
     // The table of an object inside an integrator's or estimator's (a key of kind Object
     // refers to it by name), for the catalogue.
     void addObjectKeys(const KeyTable& keys) { objectKeys_.push_back(&keys); }
+    // The decisions a technique makes besides the standard ones. Their ids are hashed into
+    // every coordinate, so two decisions sharing one would draw the same coordinates:
+    // std::logic_error for an id or a name already taken, by a standard decision or another
+    // technique's, and for a dimension count other than 1 or 2.
+    void addDecisions(std::span<const Decision> decisions);
 
     // From a JSON object with a "type" key; ConfigError naming the pointer for an unknown
     // type or any bad or unknown key.
@@ -94,6 +102,8 @@ class TechniqueRegistry {
     std::vector<std::pair<std::string, const KeyTable*>> integratorKeys() const;
     std::vector<std::pair<std::string, const KeyTable*>> estimatorKeys() const;
     const std::vector<const KeyTable*>& objectKeys() const { return objectKeys_; }
+    // Every decision: the standard ones, then the techniques' in registration order.
+    std::span<const Decision> decisions() const { return decisions_; }
 
   private:
     struct IntegratorEntry {
@@ -108,6 +118,7 @@ class TechniqueRegistry {
     std::map<std::string, IntegratorEntry> integrators_;
     std::map<std::string, EstimatorEntry> estimators_;
     std::vector<const KeyTable*> objectKeys_;
+    std::vector<Decision> decisions_{kStandardDecisions.begin(), kStandardDecisions.end()};
 };
 
 // Adds every technique folder's entries (generated from RENDERER_TECHNIQUES).

@@ -1,96 +1,55 @@
 // Every random decision a path makes has a name. A sample coordinate is addressed by
 // (decision, path vertex, repeat), so a technique can find — and replace — the coordinates
-// that feed one decision (TAIS's importance maps warp exactly these: time, lens, light
-// selection, point on light, scatter direction, bifurcation, scatter distance).
+// that feed one decision (importance maps over a decision's coordinates warp exactly these:
+// time, lens, light selection, point on light, scatter direction, bifurcation, scatter
+// distance).
+//
+// The standard path's decisions are here; a technique that makes decisions of its own declares
+// them in its folder (techniques/<name>/<name>_decisions.h) and lists them in its registration
+// (TechniqueRegistry::addDecisions), which refuses an id or a name that is taken.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace rr {
 
-enum class Decision : uint8_t {
-    FilmPosition,     // 2-D: position inside the pixel (never warped: a splatting film reads it)
-    Time,             // 1-D: instant within the shutter interval
-    Lens,             // 2-D: point on the thin-lens aperture
-    LightSelect,      // 1-D: which light to sample for next-event estimation
-    LightPoint,       // 2-D: point (or direction) on the chosen light
-    BsdfLobe,         // 1-D: which lobe (e.g. Fresnel reflect vs transmit: TAIS bifurcation)
-    BsdfDirection,    // 2-D: direction within the chosen lobe
-    MediumDistance,   // 1-D: free-flight distance in a participating medium
-    RussianRoulette,  // 1-D: path termination
-    // Resampled importance sampling (techniques/ris):
-    ResampleCount,       // 1-D: random rounding of a fractional candidate or sample count
-    ResampleSelect,      // 1-D: whether the reservoir keeps a candidate
-    CandidateLobe,       // 1-D: lobe of a candidate drawn from the BSDF
-    CandidateDirection,  // 2-D: direction of a candidate drawn from a directional source
-    // Two-stage sampling (techniques/two_stage):
-    PeakLobe,       // 1-D: lobe of a BSDF sample drawn to find a peak
-    PeakDirection,  // 2-D: direction of that sample
-    // Population Monte Carlo (techniques/pmc):
-    MixtureCount,      // 1-D: the residual offset of an iteration's deterministic mixture counts
-    MixtureLobe,       // 1-D: lobe of a sample drawn from the BSDF component
-    MixtureDirection,  // 2-D: a sample's point on a light or direction, for any component
-    Count
+struct Decision {
+    // Part of every coordinate's hash (DecisionSite::key): changing a decision's id changes
+    // every image that draws it.
+    uint8_t id;
+    uint8_t dimensions;  // 1 or 2: drawn by PixelSample::get1D or get2D
+    const char* name;    // snake_case, for messages
+
+    // The standard path's decisions (defined below):
+    // 2-D: position inside the pixel (never warped: a splatting film reads it)
+    static const Decision FilmPosition;
+    static const Decision Time;         // 1-D: instant within the shutter interval
+    static const Decision Lens;         // 2-D: point on the thin-lens aperture
+    static const Decision LightSelect;  // 1-D: which light to sample for next-event estimation
+    static const Decision LightPoint;   // 2-D: point (or direction) on the chosen light
+    // 1-D: which lobe (e.g. Fresnel reflect vs transmit: the path bifurcates)
+    static const Decision BsdfLobe;
+    static const Decision BsdfDirection;    // 2-D: direction within the chosen lobe
+    static const Decision MediumDistance;   // 1-D: free-flight distance in a participating medium
+    static const Decision RussianRoulette;  // 1-D: path termination
 };
 
-constexpr int dimensionCount(Decision d) {
-    switch (d) {
-        case Decision::FilmPosition:
-        case Decision::Lens:
-        case Decision::LightPoint:
-        case Decision::BsdfDirection:
-        case Decision::CandidateDirection:
-        case Decision::PeakDirection:
-        case Decision::MixtureDirection:
-            return 2;
-        default:
-            return 1;
-    }
-}
+inline constexpr Decision Decision::FilmPosition{0, 2, "film_position"};
+inline constexpr Decision Decision::Time{1, 1, "time"};
+inline constexpr Decision Decision::Lens{2, 2, "lens"};
+inline constexpr Decision Decision::LightSelect{3, 1, "light_select"};
+inline constexpr Decision Decision::LightPoint{4, 2, "light_point"};
+inline constexpr Decision Decision::BsdfLobe{5, 1, "bsdf_lobe"};
+inline constexpr Decision Decision::BsdfDirection{6, 2, "bsdf_direction"};
+inline constexpr Decision Decision::MediumDistance{7, 1, "medium_distance"};
+inline constexpr Decision Decision::RussianRoulette{8, 1, "russian_roulette"};
 
-constexpr const char* decisionName(Decision d) {
-    switch (d) {
-        case Decision::FilmPosition:
-            return "film_position";
-        case Decision::Time:
-            return "time";
-        case Decision::Lens:
-            return "lens";
-        case Decision::LightSelect:
-            return "light_select";
-        case Decision::LightPoint:
-            return "light_point";
-        case Decision::BsdfLobe:
-            return "bsdf_lobe";
-        case Decision::BsdfDirection:
-            return "bsdf_direction";
-        case Decision::MediumDistance:
-            return "medium_distance";
-        case Decision::RussianRoulette:
-            return "russian_roulette";
-        case Decision::ResampleCount:
-            return "resample_count";
-        case Decision::ResampleSelect:
-            return "resample_select";
-        case Decision::CandidateLobe:
-            return "candidate_lobe";
-        case Decision::CandidateDirection:
-            return "candidate_direction";
-        case Decision::PeakLobe:
-            return "peak_lobe";
-        case Decision::PeakDirection:
-            return "peak_direction";
-        case Decision::MixtureCount:
-            return "mixture_count";
-        case Decision::MixtureLobe:
-            return "mixture_lobe";
-        case Decision::MixtureDirection:
-            return "mixture_direction";
-        case Decision::Count:
-            break;
-    }
-    return "?";
-}
+// The standard decisions, which every technique's decisions must differ from.
+inline constexpr std::array<Decision, 9> kStandardDecisions{
+    Decision::FilmPosition,  Decision::Time,           Decision::Lens,
+    Decision::LightSelect,   Decision::LightPoint,     Decision::BsdfLobe,
+    Decision::BsdfDirection, Decision::MediumDistance, Decision::RussianRoulette};
 
 // Where in a path a decision is made. Camera decisions use vertex 0. `repeat` numbers
 // repeated draws of one decision at one vertex (several light samples per pixel sample);
@@ -102,7 +61,7 @@ struct DecisionSite {
     uint32_t repeatCount = 1;
 
     constexpr uint64_t key() const {
-        return (static_cast<uint64_t>(vertex) << 40) | (static_cast<uint64_t>(decision) << 32) |
+        return (static_cast<uint64_t>(vertex) << 40) | (static_cast<uint64_t>(decision.id) << 32) |
                repeat;
     }
 };

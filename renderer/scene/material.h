@@ -1,13 +1,13 @@
 // Material (BSDF) interface, in the local shading frame where the normal is +z.
 //  - eval(wo, wi): f(wo, wi)·|cos θi|, zero for specular lobes;
 //  - pdf(wo, wi): solid-angle density of sample(); zero for specular lobes;
-//  - sample(): picks a lobe with `uLobe` (a named decision: TAIS's bifurcation map replaces
-//    it) and a direction with `uDirection`, returns weight = f·|cos θi| / pdf;
-//  - peaks(): the directions where lobes peak, for two-stage sampling's initial splits.
+//  - sample(): picks a lobe with `uLobe` (a named decision, which a technique may replace) and
+//    a direction with `uDirection`, returns weight = f·|cos θi| / pdf.
+// What only some estimators ask of a material is a capability it may also implement
+// (scene/lobe_peaks.h).
 // Materials without transmission are two-sided: they mirror wo to the normal's side.
 #pragma once
 
-#include <array>
 #include <cstdint>
 
 #include "math/rgb.h"
@@ -33,15 +33,6 @@ struct BsdfSample {
     bool isSpecular() const { return (lobe & kSpecular) != 0; }
 };
 
-// Up to 16 peak directions (local frame): mirror, retro-reflection, anisotropic cone peaks.
-struct LobePeaks {
-    std::array<Vec3, 16> directions;
-    int count = 0;
-    void add(const Vec3& w) {
-        if (count < static_cast<int>(directions.size())) directions[count++] = w;
-    }
-};
-
 class Material {
   public:
     virtual ~Material() = default;
@@ -50,11 +41,11 @@ class Material {
     virtual float pdf(const ShadingContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
     virtual bool sample(const ShadingContext& ctx, const Vec3& wo, float uLobe, Vec2 uDirection,
                         BsdfSample* out) const = 0;
-    virtual void peaks(const ShadingContext& ctx, const Vec3& wo, LobePeaks* out) const = 0;
 
     // Materials that both reflect and transmit (glass) choose between the two with uLobe:
     // sample() reflects exactly when uLobe < reflectionChoice(ctx, wo), and the sample's pdf
-    // is that probability (or its complement). TAIS's bifurcation map re-weights this choice.
+    // is that probability (or its complement), which a technique that steers the choice
+    // re-weights.
     virtual float reflectionChoice(const ShadingContext& /*ctx*/, const Vec3& /*wo*/) const {
         return 1;
     }
@@ -64,6 +55,13 @@ class Material {
     bool hasNonSpecular() const { return (lobes() & (kDiffuse | kGlossy)) != 0; }
     // Materials with transmission need true orientation (entering vs leaving).
     bool hasTransmission() const { return (lobes() & kTransmission) != 0; }
+
+    // Index in the scene's material list; set by the scene.
+    int index() const { return index_; }
+    void setIndex(int i) { index_ = i; }
+
+  private:
+    int index_ = -1;
 };
 
 }  // namespace rr

@@ -85,6 +85,7 @@ SceneBuilder::SceneBuilder() : scene_(new Scene()) {
 }
 
 const Material* SceneBuilder::addMaterial(std::unique_ptr<Material> material) {
+    material->setIndex(static_cast<int>(scene_->materials_.size()));
     scene_->materials_.push_back(std::move(material));
     return scene_->materials_.back().get();
 }
@@ -126,12 +127,10 @@ void SceneBuilder::setCamera(const CameraSettings& settings, int width, int heig
 std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
     Scene& s = *scene_;
     if (!s.camera_) throw std::logic_error("scene has no camera");
-    bool anyMotion = false;
     for (size_t i = 0; i < s.shapes_.size(); ++i) {
         RTCGeometry g = s.shapes_[i]->createGeometry(s.device_);
         rtcAttachGeometryByID(s.rtcScene_, g, static_cast<unsigned>(i));
         rtcReleaseGeometry(g);
-        anyMotion = anyMotion || s.shapes_[i]->hasMotion();
     }
     rtcSetSceneBuildQuality(s.rtcScene_, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(s.rtcScene_);
@@ -154,15 +153,9 @@ std::unique_ptr<Scene> SceneBuilder::build(LightSelection selection) {
         if (light->isInfinite()) s.infiniteLights_.push_back(light);
     }
 
-    s.features_.motionBlur = anyMotion && s.camera_->hasShutterInterval();
-    s.features_.thinLens = s.camera_->isThinLens();
-    s.features_.media = s.medium_ != nullptr;
-    for (const std::unique_ptr<Shape>& shape : s.shapes_) {
-        s.features_.media = s.features_.media || shape->interiorMedium();
-        const Material* m = shape->material();
-        s.features_.bifurcation = s.features_.bifurcation ||
-                                  (m && (m->lobes() & kReflection) && (m->lobes() & kTransmission));
-    }
+    s.hasMedia_ = s.medium_ != nullptr;
+    for (const std::unique_ptr<Shape>& shape : s.shapes_)
+        s.hasMedia_ = s.hasMedia_ || shape->interiorMedium();
     s.lightSelector_ = makeLightSelector(selection, s.lights_);
     return std::move(scene_);
 }

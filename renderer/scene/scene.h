@@ -22,15 +22,6 @@ namespace rr {
 
 class AreaLight;
 
-// What the scene uses; everything else is skipped at no cost (and recorded in the EXR).
-struct SceneFeatures {
-    bool motionBlur = false;  // some shape moves and the shutter is open for a while
-    bool thinLens = false;    // the camera has an aperture
-    bool media = false;       // participating media: a scene medium or a shape's interior
-    // Some surface both reflects and transmits (glass): its paths bifurcate.
-    bool bifurcation = false;
-};
-
 class Scene {
   public:
     ~Scene();
@@ -49,12 +40,15 @@ class Scene {
     // The lights that rays escaping the scene see (environment maps).
     std::span<const Light* const> infiniteLights() const { return infiniteLights_; }
     const LightSelector& lightSelector() const { return *lightSelector_; }
-    const SceneFeatures& features() const { return features_; }
+    // The shapes; index = Embree geometry id.
+    std::span<const std::unique_ptr<Shape>> shapes() const { return shapes_; }
     // The materials of the scene's shapes.
     std::span<const std::unique_ptr<Material>> materials() const { return materials_; }
     // The medium filling the scene outside the shapes that have an interior medium (nullptr:
     // vacuum). It fills all space, so it also attenuates infinite lights.
     const Medium* medium() const { return medium_; }
+    // Whether there are participating media: the scene's or a shape's interior.
+    bool hasMedia() const { return hasMedia_; }
 
   private:
     friend class SceneBuilder;
@@ -70,7 +64,7 @@ class Scene {
     std::vector<const Light*> lights_;
     std::vector<const Light*> infiniteLights_;
     std::unique_ptr<LightSelector> lightSelector_;
-    SceneFeatures features_;
+    bool hasMedia_ = false;
     RTCDevice device_ = nullptr;
     RTCScene rtcScene_ = nullptr;
 };

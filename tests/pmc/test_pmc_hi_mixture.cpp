@@ -48,7 +48,7 @@ class ScenePoint final : public ShadingPoint {
 
     // The integrator's light sampling (PMC-HI's one component for all lights): the scene's
     // selection, then the light's own sampler.
-    bool sampleLight(uint32_t, uint32_t, LightDraw, LightSample* ls, float* pdf,
+    bool sampleLight(uint32_t, uint32_t, const LightStandIns*, LightSample* ls, float* pdf,
                      const Light** light) override {
         float pmf;
         *light = scene_.lightSelector().select(uniform(kSeed, draws_++), Vec3(0.0f), &pmf);
@@ -76,7 +76,7 @@ class ScenePoint final : public ShadingPoint {
     Vec2 decide2D(Decision, uint32_t, uint32_t) const override { return uniform2(kSeed, draws_++); }
     const Frame* frame() const override { return &frame_; }
     Vec3 position() const override { return Vec3(0.0f); }
-    bool scatteringShape(ScatteringShape*) const override { return false; }
+    bool scatteringShape(const LobePeakSources*, ScatteringShape*) const override { return false; }
     bool sampleScattering(float uLobe, const Vec2& u, Vec3* wi, float* pdf) const override {
         BsdfSample bs;
         if (!material_.sample(context(), wo_, uLobe, u, &bs) || bs.isSpecular()) return false;

@@ -89,7 +89,7 @@ DirectionRun sampleDirections(const PixelMaps& maps, const TaisSettings& s, cons
     const Scene& scene = *threeLights().scene;
     const Lambert lambert(Rgb(0.8f));
     const Sampler sampler(SamplerType::Independent, 7, 1);
-    const std::vector<char> invertible(3, 0);
+    const std::vector<const InvertibleLight*> invertible(3, nullptr);
     const ShadingContext ctx{Vec2(0.5f, 0.5f), Vec3(0.0f)};
     DirectionRun run;
     for (int i = 0; i < kSamples; ++i) {
@@ -120,7 +120,7 @@ DirectionRun sampleDirections(const PixelMaps& maps, const TaisSettings& s, cons
 std::function<double(const Vec3&)> mixtureDensity(const PixelMaps& maps, const TaisSettings& s,
                                                   const Frame& frame, const Vec3& woLocal) {
     return [&maps, &s, frame, woLocal](const Vec3& wi) {
-        static const std::vector<char> invertible(3, 0);
+        static const std::vector<const InvertibleLight*> invertible(3, nullptr);
         const Sampler sampler(SamplerType::Independent, 0, 1);
         const PixelSample sample = sampler.at(0, 0);
         const tais::MapGuide guide(*threeLights().scene, sample, maps, s, invertible);
@@ -179,7 +179,7 @@ TEST(TaisGuide, BifurcationChoosesReflectionWithTheMixedProbability) {
     const float fresnel = glass.reflectProbability(wo);
     const double expectedReflect = kAlpha * 0.9 + (1 - kAlpha) * fresnel;
     const Sampler sampler(SamplerType::Independent, 3, 1);
-    const std::vector<char> invertible(3, 0);
+    const std::vector<const InvertibleLight*> invertible(3, nullptr);
     double reflections = 0;
     bool pdfsMatch = true;
     for (int i = 0; i < kSamples; ++i) {
@@ -210,7 +210,7 @@ TEST(TaisGuide, BifurcationChoosesReflectionWithTheMixedProbability) {
 std::vector<double> selectLights(const PixelMaps& maps, const TaisSettings& s, uint32_t vertex,
                                  const std::vector<double>& claimed, uint64_t seed) {
     const Sampler sampler(SamplerType::Independent, seed, 1);
-    const std::vector<char> invertible(3, 0);
+    const std::vector<const InvertibleLight*> invertible(3, nullptr);
     std::vector<double> observed(3, 0.0);
     int wrongPdfs = 0;
     for (int i = 0; i < kSamples; ++i) {
@@ -219,7 +219,7 @@ std::vector<double> selectLights(const PixelMaps& maps, const TaisSettings& s, u
         LightSample ls;
         float pdf;
         const Light* light;
-        if (!guide.sampleLight(vertex, 0, 1, LightDraw::Exact, Vec3(0.1f, 0.2f, 0.0f), 0, &ls, &pdf,
+        if (!guide.sampleLight(vertex, 0, 1, nullptr, Vec3(0.1f, 0.2f, 0.0f), 0, &ls, &pdf,
                                &light)) {
             ADD_FAILURE() << "no light sampled";
             break;
@@ -302,7 +302,7 @@ TEST(TaisGuide, DeeperVerticesSelectLightsFromTheirOwnEntries) {
 TEST(TaisGuide, ADecisionWithoutCreditIsStandardSampling) {
     const Scene& scene = *threeLights().scene;
     const Sampler sampler(SamplerType::Independent, 11, 1);
-    const std::vector<char> invertible(3, 0);
+    const std::vector<const InvertibleLight*> invertible(3, nullptr);
     const ShadingContext ctx{Vec2(0.5f, 0.5f), Vec3(0.0f)};
     for (const bool follows : {true, false}) {
         TaisSettings s;

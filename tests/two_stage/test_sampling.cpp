@@ -105,7 +105,7 @@ class FixedPoint final : public ShadingPoint {
         shape.normal = woLocal.z < 0 ? -frame.n : frame.n;
         shape.transmits = material.hasTransmission();
         LobePeaks local;
-        material.peaks(ctx, woLocal, &local);
+        lobePeakSource(material)->peaks(ctx, woLocal, &local);
         for (int i = 0; i < local.count; ++i)
             shape.peaks.add(frame.toWorld(local.directions[i]));
         FixedPoint point(shape, [&material, frame, woLocal](const Vec3& wi) {
@@ -117,7 +117,8 @@ class FixedPoint final : public ShadingPoint {
         return point;
     }
 
-    bool sampleLight(uint32_t, uint32_t, LightDraw, LightSample*, float*, const Light**) override {
+    bool sampleLight(uint32_t, uint32_t, const LightStandIns*, LightSample*, float*,
+                     const Light**) override {
         return false;
     }
     Rgb scattering(const Vec3& wi) const override { return scattering_(wi); }
@@ -132,14 +133,14 @@ class FixedPoint final : public ShadingPoint {
         return f * le * tr * (misWeight / density);
     }
     float decide1D(Decision d, uint32_t repeat, uint32_t) const override {
-        return uniform(uint64_t(d), repeat);
+        return uniform(uint64_t(d.id), repeat);
     }
     Vec2 decide2D(Decision d, uint32_t repeat, uint32_t) const override {
-        return uniform2(uint64_t(d) + 100, repeat);
+        return uniform2(uint64_t(d.id) + 100, repeat);
     }
     const Frame* frame() const override { return &frame_; }
     Vec3 position() const override { return Vec3(0.0f); }
-    bool scatteringShape(ScatteringShape* out) const override {
+    bool scatteringShape(const LobePeakSources*, ScatteringShape* out) const override {
         *out = shape_;
         return true;
     }

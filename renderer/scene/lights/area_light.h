@@ -1,12 +1,13 @@
 // Diffuse emitter attached to a shape: constant radiance on the normal's side (or both sides).
 #pragma once
 
+#include "scene/invertible_light.h"
 #include "scene/light.h"
 #include "scene/shape.h"
 
 namespace rr {
 
-class AreaLight final : public Light {
+class AreaLight final : public Light, public InvertibleLight {
   public:
     AreaLight(const Shape* shape, const Rgb& radiance, bool twoSided)
         : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
@@ -19,7 +20,7 @@ class AreaLight final : public Light {
     // towards the reference (one-sided lights seen from behind), for which sample() refuses u.
     bool invertSample(const LightReference& reference, const Vec3& direction, const Vec3& point,
                       Vec2* u) const override;
-    bool canInvertSample() const override { return shape_->invertsSamples(); }
+    bool invertsSamples() const override { return shape_->invertsSamples(); }
     Rgb power() const override;
     bool isDelta() const override { return false; }
 

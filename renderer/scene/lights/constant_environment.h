@@ -4,12 +4,13 @@
 // cosine-weighted about the receiver's normal (env_sampling.h).
 #pragma once
 
+#include "scene/invertible_light.h"
 #include "scene/light.h"
 #include "scene/lights/env_sampling.h"
 
 namespace rr {
 
-class ConstantEnvironment final : public Light {
+class ConstantEnvironment final : public Light, public InvertibleLight {
   public:
     explicit ConstantEnvironment(const Rgb& radiance, EnvSampling sampling = EnvSampling::Uniform)
         : radiance_(radiance),
@@ -25,7 +26,6 @@ class ConstantEnvironment final : public Light {
     Rgb escapedRadiance(const Vec3&) const override { return radiance_; }
     float directionPdf(const LightReference& reference, const Vec3& w) const override;
     // The inverse of the direction sampling at `direction`.
-    bool canInvertSample() const override { return true; }
     bool invertSample(const LightReference& reference, const Vec3& direction, const Vec3& point,
                       Vec2* u) const override;
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }

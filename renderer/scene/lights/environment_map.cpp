@@ -144,8 +144,8 @@ bool EnvironmentMap::sample(const LightReference& reference, Vec2 u, float,
     return out->pdf > 0 && !out->radiance.isBlack();
 }
 
-bool EnvironmentMap::sampleProxy(const LightReference& reference, Vec2 u, float time,
-                                 LightSample* out) const {
+bool EnvironmentMap::sampleStandIn(const LightReference& reference, Vec2 u, float time,
+                                   LightSample* out) const {
     if (proxy_.block == 1) return sample(reference, u, time, out);
     float imagePdf;
     int cell;

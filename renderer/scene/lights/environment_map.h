@@ -15,7 +15,7 @@
 // cosine-weighted about the receiver's normal or uniform, as pbrt-v1's plain `infinite` light,
 // for baselines configured like the papers' renderers. The stand-in is then sample() itself.
 //
-// Resampling's stand-in (sampleProxy): the same map coarsened to blocks of texels, so that a
+// Resampling's stand-in (sampleStandIn): the same map coarsened to blocks of texels, so that a
 // candidate reads two small tables that stay in cache instead of a megabyte-scale texel table
 // and the texel (about 400 ns per candidate on Galileo's 1000 × 1000 probe, against a shadow
 // ray's 150). A block is chosen with probability ∝ its texels' weights, a point uniformly in it;
@@ -29,13 +29,15 @@
 #include "io/rgb_image_io.h"
 #include "math/frame.h"
 #include "sampling/distribution2d.h"
+#include "scene/invertible_light.h"
 #include "scene/light.h"
+#include "scene/light_stand_in.h"
 #include "scene/lights/env_layout.h"
 #include "scene/lights/env_sampling.h"
 
 namespace rr {
 
-class EnvironmentMap final : public Light {
+class EnvironmentMap final : public Light, public LightStandIn, public InvertibleLight {
   public:
     // `image` must hold finite values (negative ones are clamped to 0: lossy EXR compression
     // leaves some). Its radiance is multiplied by `scale`; `toWorld` is a rotation (its axes
@@ -45,8 +47,8 @@ class EnvironmentMap final : public Light {
 
     bool sample(const LightReference& reference, Vec2 u, float time,
                 LightSample* out) const override;
-    bool sampleProxy(const LightReference& reference, Vec2 u, float time,
-                     LightSample* out) const override;
+    bool sampleStandIn(const LightReference& reference, Vec2 u, float time,
+                       LightSample* out) const override;
     Rgb exactRadiance(const LightSample& s) const override { return escapedRadiance(s.direction); }
     float pdf(const Vec3&, const SurfaceHit&) const override { return 0; }
     // Flux through the scene's bounding sphere: π r² ∫ L dω (its cross-section times the
@@ -61,7 +63,6 @@ class EnvironmentMap final : public Light {
     // False where the density is zero, as no u yields the direction there: the lat-long poles
     // and the probe's rim (no solid angle), texels of zero weight (black ones, the probe's
     // masked ones). Other `sampling`: invertEnvDirection.
-    bool canInvertSample() const override { return true; }
     bool invertSample(const LightReference& reference, const Vec3& direction, const Vec3& point,
                       Vec2* u) const override;
     void preprocess(const Vec3&, float sceneRadius) override { radius_ = sceneRadius; }
@@ -80,11 +81,11 @@ class EnvironmentMap final : public Light {
     void aim(const Vec3& reference, const Vec3& direction, LightSample* out) const;
     // ∫ L dω over the sphere: Σ texel radiance × texel solid angle.
     const Rgb& radianceIntegral() const { return radianceIntegral_; }
-    // The side of sampleProxy()'s blocks, in texels (1: the stand-in is sample() itself).
+    // The side of sampleStandIn()'s blocks, in texels (1: the stand-in is sample() itself).
     int proxyBlock() const { return proxy_.block; }
 
   private:
-    // sampleProxy()'s coarsened map: block × block texels per cell.
+    // sampleStandIn()'s coarsened map: block × block texels per cell.
     struct Proxy {
         int block = 1;
         Distribution2D distribution;

@@ -12,12 +12,12 @@
 // fig. 8: roughness 0.001 and 1.0) or are given directly.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/texture.h"
 
 namespace rr {
 
-class AshikhminShirley final : public Material {
+class AshikhminShirley final : public Material, public LobePeakSource {
   public:
     // `u` and `v` are roughnesses (n = 1/roughness) or, with `exponents`, the exponents.
     AshikhminShirley(TexturePtr<Rgb> diffuse, TexturePtr<Rgb> specular, TexturePtr<float> u,

@@ -4,14 +4,18 @@
 #pragma once
 
 #include "scene/checkerboard.h"
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 
 namespace rr {
 
-class CheckerMaterial final : public Material {
+class CheckerMaterial final : public Material, public LobePeakSource {
   public:
     CheckerMaterial(const Material* even, const Material* odd, Checkerboard board)
-        : even_(even), odd_(odd), board_(board) {}
+        : even_(even),
+          odd_(odd),
+          evenPeaks_(lobePeakSource(*even)),
+          oddPeaks_(lobePeakSource(*odd)),
+          board_(board) {}
 
     Rgb eval(const ShadingContext& ctx, const Vec3& wo, const Vec3& wi) const override {
         return at(ctx).eval(ctx, wo, wi);
@@ -24,8 +28,9 @@ class CheckerMaterial final : public Material {
         return at(ctx).sample(ctx, wo, uLobe, uDirection, out);
     }
     void peaks(const ShadingContext& ctx, const Vec3& wo, LobePeaks* out) const override {
-        at(ctx).peaks(ctx, wo, out);
+        (board_.isEven(ctx.uv) ? evenPeaks_ : oddPeaks_)->peaks(ctx, wo, out);
     }
+    bool findsPeaks() const override { return evenPeaks_ && oddPeaks_; }
     uint8_t lobes() const override { return even_->lobes() | odd_->lobes(); }
 
   private:
@@ -35,6 +40,8 @@ class CheckerMaterial final : public Material {
 
     const Material* even_;
     const Material* odd_;
+    const LobePeakSource* evenPeaks_;  // nullptr: the material does not know its peaks
+    const LobePeakSource* oddPeaks_;
     Checkerboard board_;
 };
 

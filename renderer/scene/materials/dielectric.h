@@ -3,7 +3,7 @@
 // the interface is scaled by 1/η² (η = ηt/ηi), as for camera paths (Veach 1997, §5.2).
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 
 namespace rr {
 
@@ -11,7 +11,7 @@ namespace rr {
 // (coming from inside). `eta` is interior IOR / exterior IOR.
 float fresnelDielectric(float cosThetaI, float eta);
 
-class Dielectric final : public Material {
+class Dielectric final : public Material, public LobePeakSource {
   public:
     Dielectric(float eta, const Rgb& reflectance, const Rgb& transmittance)
         : eta_(eta), reflectance_(reflectance), transmittance_(transmittance) {}

@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/texture.h"
 
 namespace rr {
@@ -23,7 +23,7 @@ struct LafortuneLobe {
     Rgb albedo;      // ρ: scales the lobe; not normalised (see Lafortune::lobeAlbedo)
 };
 
-class Lafortune final : public Material {
+class Lafortune final : public Material, public LobePeakSource {
   public:
     static constexpr int kMaxLobes = 16;
 

@@ -1,12 +1,12 @@
 // Ideal diffuse reflection, f = ρ/π (ρ a texture), sampled with a cosine-weighted hemisphere.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/texture.h"
 
 namespace rr {
 
-class Lambert final : public Material {
+class Lambert final : public Material, public LobePeakSource {
   public:
     explicit Lambert(TexturePtr<Rgb> albedo) : albedo_(std::move(albedo)) {}
     explicit Lambert(const Rgb& albedo) : Lambert(constantTexture(albedo)) {}

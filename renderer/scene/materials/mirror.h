@@ -1,11 +1,11 @@
 // Perfect specular reflection with a constant reflectance.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 
 namespace rr {
 
-class Mirror final : public Material {
+class Mirror final : public Material, public LobePeakSource {
   public:
     explicit Mirror(const Rgb& reflectance) : reflectance_(reflectance) {}
 

@@ -34,8 +34,8 @@ bool MixMaterial::sample(const ShadingContext& ctx, const Vec3& wo, float uLobe,
 }
 
 void MixMaterial::peaks(const ShadingContext& ctx, const Vec3& wo, LobePeaks* out) const {
-    a_->peaks(ctx, wo, out);
-    b_->peaks(ctx, wo, out);
+    peaksA_->peaks(ctx, wo, out);
+    peaksB_->peaks(ctx, wo, out);
 }
 
 }  // namespace rr

@@ -6,12 +6,12 @@
 // retro-reflection direction (= wo), which the model was designed for, and the normal.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/texture.h"
 
 namespace rr {
 
-class OrenNayar final : public Material {
+class OrenNayar final : public Material, public LobePeakSource {
   public:
     // `sigmaDegrees`: the facet slope deviation σ in degrees.
     OrenNayar(TexturePtr<Rgb> albedo, TexturePtr<float> sigmaDegrees)

@@ -7,12 +7,12 @@
 // are declined. pdf() is the mixture density. Peak: the mirror direction.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/texture.h"
 
 namespace rr {
 
-class Phong final : public Material {
+class Phong final : public Material, public LobePeakSource {
   public:
     Phong(TexturePtr<Rgb> diffuse, TexturePtr<Rgb> specular, TexturePtr<float> exponent)
         : diffuse_(std::move(diffuse)),

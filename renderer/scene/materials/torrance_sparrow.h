@@ -8,14 +8,14 @@
 // the surface are declined. Two-sided, reflection only.
 #pragma once
 
-#include "scene/material.h"
+#include "scene/lobe_peaks.h"
 #include "scene/materials/microfacet.h"
 #include "scene/texture.h"
 
 namespace rr {
 
 template <class Distribution>
-class TorranceSparrow : public Material {
+class TorranceSparrow : public Material, public LobePeakSource {
   public:
     TorranceSparrow(TexturePtr<Rgb> reflectance, TexturePtr<float> roughness, float eta)
         : reflectance_(std::move(reflectance)), roughness_(std::move(roughness)), eta_(eta) {}

@@ -9,6 +9,7 @@
 #include "math/frame.h"
 #include "sampling/warps.h"
 #include "techniques/pmc/mixture_allocation.h"
+#include "techniques/pmc/pmc_decisions.h"
 
 namespace rr::pmc {
 
@@ -111,11 +112,11 @@ bool PmcHiEstimator::draw(ShadingPoint& point, const Kernel& kernel, uint32_t co
     d->component = component;
     if (component >= 1 && component <= lightComponents())
         return drawLightPoint(point, component, repeat, repeats, d);
-    const Vec2 u = point.decide2D(Decision::MixtureDirection, repeat, repeats);
+    const Vec2 u = point.decide2D(kMixtureDirection, repeat, repeats);
     if (component == kBsdf) {
         float pdf;
-        if (!point.sampleScattering(point.decide1D(Decision::MixtureLobe, repeat, repeats), u,
-                                    &d->direction, &pdf))
+        if (!point.sampleScattering(point.decide1D(kMixtureLobe, repeat, repeats), u, &d->direction,
+                                    &pdf))
             return false;
     } else {
         d->direction =
@@ -137,12 +138,13 @@ bool PmcHiEstimator::drawLightPoint(ShadingPoint& point, uint32_t component, uin
     const Light* light = nullptr;
     if (oneForAllLights_) {
         float pdf;
-        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &pdf, &light) || !(pdf > 0))
+        if (!point.sampleLight(repeat, repeats, /*standIns=*/nullptr, &ls, &pdf, &light) ||
+            !(pdf > 0))
             return false;
         d->selectedLightPdf = pdf;
     } else {
         light = lights_[component - 1];
-        const Vec2 u = point.decide2D(Decision::MixtureDirection, repeat, repeats);
+        const Vec2 u = point.decide2D(kMixtureDirection, repeat, repeats);
         if (!point.sampleLightOf(*light, u, &ls) || !(ls.pdf > 0)) return false;
     }
     d->direction = ls.direction;
@@ -272,7 +274,7 @@ uint32_t PmcHiEstimator::drawIteration(ShadingPoint& point, const Kernel& kernel
     const uint32_t m = components();
     std::array<uint32_t, kMaxComponents> counts{};
     mixtureCounts(std::span<const double>(kernel.alpha.data(), m), n,
-                  point.decide1D(Decision::MixtureCount, t, iterations),
+                  point.decide1D(kMixtureCount, t, iterations),
                   std::span<uint32_t>(counts.data(), m));
     uint32_t i = 0;
     for (uint32_t k = 0; k < m; ++k)

@@ -1,6 +1,7 @@
 // The `pmc_ip` integrator and the `pmc_hi` estimator as scenes name them (configs/README.md).
 #include "config/json_reader.h"
 #include "render/technique_registry.h"
+#include "techniques/pmc/pmc_decisions.h"
 #include "techniques/pmc/pmc_hi_estimator.h"
 #include "techniques/pmc/pmc_ip_integrator.h"
 
@@ -149,6 +150,7 @@ std::unique_ptr<DirectLightingEstimator> makePmcHi(ObjectReader& json) {
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addIntegrator("pmc_ip", kPmcIpKeys, makePmcIp, /*rendersMedia=*/false);
     registry.addEstimator("pmc_hi", kPmcHiKeys, makePmcHi);
+    registry.addDecisions(kDecisions);
 }
 
 }  // namespace rr::pmc

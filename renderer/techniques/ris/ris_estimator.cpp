@@ -9,6 +9,7 @@
 #include "sampling/warps.h"
 #include "scene/scene.h"
 #include "techniques/ris/reservoir.h"
+#include "techniques/ris/ris_decisions.h"
 
 namespace rr::ris {
 
@@ -46,10 +47,10 @@ uint32_t ceilCount(double x) {
 }
 
 // An integer count as it is; a fractional one rounded randomly by draw `repeat` of the
-// vertex's ResampleCount decision (0: M, 1: N).
+// vertex's resample_count decision (0: M, 1: N).
 uint32_t countAt(const ShadingPoint& point, double x, uint32_t repeat) {
     if (x == std::floor(x)) return static_cast<uint32_t>(x);
-    return roundRandomly(x, point.decide1D(Decision::ResampleCount, repeat, 2));
+    return roundRandomly(x, point.decide1D(kResampleCount, repeat, 2));
 }
 
 // The pilot's sample shape: this many samples of this many candidates per shading point, a
@@ -104,6 +105,7 @@ nlohmann::json RisEstimator::parameters() const {
 }
 
 void RisEstimator::prepare(const Scene& scene, const std::string& pointer) {
+    if (source_ == CandidateSource::LightProxy) standIns_ = LightStandIns(scene.lights());
     if (source_ != CandidateSource::Mixture) return;
     for (const Light* light : scene.lights())
         if (!light->isInfinite())
@@ -124,9 +126,9 @@ uint32_t RisEstimator::decisionRepeats() const {
 bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                                  Candidate* c) const {
     if (fromLights()) {
-        const LightDraw draw =
-            source_ == CandidateSource::LightProxy ? LightDraw::Proxy : LightDraw::Exact;
-        if (!point.sampleLight(repeat, repeats, draw, &c->light, &c->pdf, &c->emitter))
+        const LightStandIns* standIns =
+            source_ == CandidateSource::LightProxy ? &standIns_ : nullptr;
+        if (!point.sampleLight(repeat, repeats, standIns, &c->light, &c->pdf, &c->emitter))
             return false;
         c->direction = c->light.direction;
         c->scattering = point.scattering(c->direction);
@@ -134,10 +136,10 @@ bool RisEstimator::drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t 
         return true;
     }
     if (source_ == CandidateSource::Mixture) return drawFromMixture(point, repeat, repeats, c);
-    const Vec2 u = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+    const Vec2 u = point.decide2D(kCandidateDirection, repeat, repeats);
     const Frame* frame = point.frame();
     if (source_ == CandidateSource::Bsdf) {
-        const float uLobe = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+        const float uLobe = point.decide1D(kCandidateLobe, repeat, repeats);
         if (!point.sampleScattering(uLobe, u, &c->direction, &c->pdf)) return false;
     } else if (!frame) {  // a point in a medium: the whole sphere
         c->direction = squareToUniformSphere(u);
@@ -158,17 +160,17 @@ bool RisEstimator::drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_
                                    Candidate* c) const {
     // The lower half of the coordinate picks light sampling, the upper half the BSDF, and
     // rescaled it is the BSDF's lobe coordinate.
-    const float u = point.decide1D(Decision::CandidateLobe, repeat, repeats);
+    const float u = point.decide1D(kCandidateLobe, repeat, repeats);
     // Each draw's own density is not needed: the mixture's is evaluated below.
     float drawPdf;
     if (u < 0.5f) {
         LightSample ls;
         const Light* drawnLight;
-        if (!point.sampleLight(repeat, repeats, LightDraw::Exact, &ls, &drawPdf, &drawnLight))
+        if (!point.sampleLight(repeat, repeats, /*standIns=*/nullptr, &ls, &drawPdf, &drawnLight))
             return false;
         c->direction = ls.direction;
     } else {
-        const Vec2 uDirection = point.decide2D(Decision::CandidateDirection, repeat, repeats);
+        const Vec2 uDirection = point.decide2D(kCandidateDirection, repeat, repeats);
         if (!point.sampleScattering(2 * u - 1, uDirection, &c->direction, &drawPdf)) return false;
     }
     // The mixture's density counts both ways of drawing the direction, each by the density of
@@ -187,8 +189,9 @@ Rgb RisEstimator::finish(ShadingPoint& point, const Candidate& c, float density)
         float survival;
         const Rgb tr = point.visibility(c.light, c.emitter->isInfinite(), &survival);
         if (tr.isBlack()) return Rgb(0.0f);
-        const Rgb le = source_ == CandidateSource::LightProxy ? c.emitter->exactRadiance(c.light)
-                                                              : c.light.radiance;
+        const LightStandIn* standIn =
+            source_ == CandidateSource::LightProxy ? standIns_.of(*c.emitter) : nullptr;
+        const Rgb le = standIn ? standIn->exactRadiance(c.light) : c.light.radiance;
         return point.contribution(c.scattering, le, tr, 1.0f, density);
     }
     const Rgb le = point.incidentEmission(c.direction);
@@ -205,7 +208,7 @@ void RisEstimator::estimate(ShadingPoint& point, const CandidateCounts& counts) 
             return drawCandidate(point, i * mMax + j, repeats, c);
         };
         auto select = [&](uint32_t j) {
-            return point.decide1D(Decision::ResampleSelect, i * mMax + j, repeats);
+            return point.decide1D(kResampleSelect, i * mMax + j, repeats);
         };
         Candidate y;
         float density;
@@ -226,7 +229,7 @@ void RisEstimator::measureCosts(ShadingPoint& point, CostTally* tally) const {
             Candidate c;
             if (!drawCandidate(point, repeat, repeats, &c)) continue;
             reservoirs[i].offer(c, c.target / c.pdf,
-                                point.decide1D(Decision::ResampleSelect, repeat, repeats));
+                                point.decide1D(kResampleSelect, repeat, repeats));
         }
     const Clock::time_point drawn = Clock::now();
     uint32_t finished = 0;

@@ -10,9 +10,10 @@
 //    sampling, p = P(light)·p(ω) per solid angle; ĝ = luminance(Fs·|cos θ|·Le), the unoccluded
 //    integrand (G's other factors are in p's change of measure); f adds visibility.
 //  - source `light_proxy`: the same, but candidates come from each light's cheaper stand-in
-//    (Light::sampleProxy: an environment map draws blocks of texels and ĝ uses the block's mean
-//    radiance); the chosen sample is finished with the light's exact radiance. p is still
-//    exact, ĝ only approximates, which eq. (1) allows.
+//    (scene/light_stand_in.h: an environment map draws blocks of texels and ĝ uses the block's
+//    mean radiance); the chosen sample is finished with the light's exact radiance. p is still
+//    exact, ĝ only approximates, which eq. (1) allows. A light without a stand-in gives its
+//    own samples, as under `light`.
 //  - sources `uniform_hemisphere`, `cosine_hemisphere` (about the shading normal) and `bsdf`
 //    (§5.2): a candidate is a direction; ĝ = luminance(Fs·|cos θ|); f adds the emission a ray in
 //    that direction finds. The hemispheres cover reflection only: transmissive materials need
@@ -23,7 +24,7 @@
 //    M = 2 draws about one of each). ĝ = luminance(Fs·|cos θ|·Le) unoccluded; f adds the
 //    emission a ray finds. Lights must all be infinite (a direction then names the light
 //    point, so p can be evaluated at a BSDF candidate); surfaces without media only.
-// Fractional M and N are rounded randomly per shading point (the ResampleCount decision), which
+// Fractional M and N are rounded randomly per shading point (the resample_count decision), which
 // keeps the estimate unbiased. With M = 1 the estimator is light sampling exactly: the same
 // decisions and the same arithmetic as `light` with N light samples.
 #pragma once
@@ -80,7 +81,8 @@ class RisEstimator final : public DirectLightingEstimator {
     FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
     uint32_t decisionRepeats() const override;
     bool worksInMedia() const override { return fromLights(); }
-    // `mixture` refuses a scene with lights that are not infinite.
+    // `light_proxy` finds the lights' stand-ins; `mixture` refuses a scene with lights that are
+    // not infinite.
     void prepare(const Scene& scene, const std::string& pointer) override;
 
     void estimate(ShadingPoint& point) const override { estimate(point, counts_); }
@@ -110,6 +112,7 @@ class RisEstimator final : public DirectLightingEstimator {
 
     CandidateSource source_;
     CandidateCounts counts_, maxCounts_;
+    LightStandIns standIns_;  // `light_proxy`: the scene's lights' (prepare)
 };
 
 }  // namespace rr::ris

@@ -1,5 +1,6 @@
 // The `ris` estimator and integrator as scenes name them (configs/README.md).
 #include "config/json_reader.h"
+#include "techniques/ris/ris_decisions.h"
 #include "techniques/ris/ris_integrator.h"
 
 namespace rr::ris {
@@ -133,6 +134,7 @@ RisSettings readSettings(ObjectReader& json) {
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addEstimator("ris", kEstimatorKeys, makeEstimator);
     registry.addObjectKeys(kCostKeys);
+    registry.addDecisions(kDecisions);
     registry.addIntegrator(
         "ris", kIntegratorKeys,
         [](ObjectReader& json, const IntegratorContext&) {

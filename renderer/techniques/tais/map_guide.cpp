@@ -88,19 +88,19 @@ float MapGuide::selectionPmf(const Light& light, const Vec3& reference, uint32_t
 
 float MapGuide::pointOnLightPdf(const Light& light, const LightReference& reference,
                                 const Vec3& direction, const Vec3& point, uint32_t vertex) const {
+    const InvertibleLight* inverse = warpsPointOn(light, vertex);
     Vec2 u;
-    if (!warpsPointOn(light, vertex) || !light.invertSample(reference, direction, point, &u))
-        return 1;
+    if (!inverse || !inverse->invertSample(reference, direction, point, &u)) return 1;
     return maps_.pointOnLight->pdf(u);
 }
 
-bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                           const LightReference& reference, float time, LightSample* ls, float* pdf,
-                           const Light** chosen) {
+bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count,
+                           const LightStandIns* standIns, const LightReference& reference,
+                           float time, LightSample* ls, float* pdf, const Light** chosen) {
     lightRecords_ = 0;
     if (!guidesLights(vertex))
-        return StandardSampling::sampleLight(vertex, repeat, count, draw, reference, time, ls, pdf,
-                                             chosen);
+        return StandardSampling::sampleLight(vertex, repeat, count, standIns, reference, time, ls,
+                                             pdf, chosen);
     const LightSelector& selector = scene().lightSelector();
     const float uSelect = sample().get1D({Decision::LightSelect, vertex, repeat, count});
     Vec2 uPoint = sample().get2D({Decision::LightPoint, vertex, repeat, count});
@@ -133,7 +133,7 @@ bool MapGuide::sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, Lig
         ++lightRecords_;
     }
     // The warp is a density on the coordinates: it composes with either sampler's.
-    if (!light->draw(draw, reference, uPoint, time, ls)) return false;
+    if (!sampleLightOrStandIn(*light, standIns, reference, uPoint, time, ls)) return false;
     *pdf = selectPmf * ls->pdf * warp;  // eq. (3) for the point
     *chosen = light;
     return true;

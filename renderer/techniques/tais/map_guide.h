@@ -15,7 +15,7 @@
 // decision, so the estimator stays unbiased. By default they draw from the map's credited part
 // only, with α scaled by that part's share of the decision's mass
 // (TaisSettings::alphaFollowsEvidence; fixed before the pixel's samples, as the maps are). A
-// point-on-light map warps only lights that can invert their sampling (Light::canInvertSample),
+// point-on-light map warps only lights that can invert their sampling (scene/invertible_light.h),
 // since MIS must find the map density of a point that BSDF sampling hit; other lights are
 // sampled as usual.
 //
@@ -27,6 +27,7 @@
 #include <span>
 
 #include "integrators/standard_sampling.h"
+#include "scene/invertible_light.h"
 #include "techniques/tais/pixel_maps.h"
 #include "techniques/tais/tais_settings.h"
 
@@ -34,25 +35,26 @@ namespace rr::tais {
 
 class MapGuide : public StandardSampling {
   public:
-    // `invertible[i]`: whether scene light i can invert its samples.
+    // `invertible[i]`: scene light i's inverse of its sampling, or nullptr when it has none.
     MapGuide(const Scene& scene, const PixelSample& sample, const PixelMaps& maps,
-             const TaisSettings& settings, std::span<const char> invertible)
+             const TaisSettings& settings, std::span<const InvertibleLight* const> invertible)
         : StandardSampling(scene, sample),
           maps_(maps),
           settings_(settings),
           invertible_(invertible) {}
     // The guide keeps a reference to the sample: a temporary would dangle.
     MapGuide(const Scene& scene, const PixelSample&& sample, const PixelMaps& maps,
-             const TaisSettings& settings, std::span<const char> invertible) = delete;
+             const TaisSettings& settings,
+             std::span<const InvertibleLight* const> invertible) = delete;
 
     // The camera ray through pixel (x, y), its time and lens coordinates warped by their maps;
     // *weight = 1 / (p_time · p_lens).
     Ray cameraRay(int x, int y, float* weight);
 
     float flightCoordinate(uint32_t vertex, const Rgb& radiance, float* warpPdf);
-    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count, LightDraw draw,
-                     const LightReference& reference, float time, LightSample* ls, float* pdf,
-                     const Light** chosen);
+    bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count,
+                     const LightStandIns* standIns, const LightReference& reference, float time,
+                     LightSample* ls, float* pdf, const Light** chosen);
     void lightContribution(uint32_t vertex, const Rgb& contribution);
     float lightPdf(uint32_t vertex, const AreaLight& light, const LightReference& reference,
                    const SurfaceHit& hit) const;
@@ -101,9 +103,10 @@ class MapGuide : public StandardSampling {
     bool guidesLights(uint32_t vertex) const {
         return steersSelection(vertex) || steersPointOnLight(vertex);
     }
-    // Whether this light's point at `vertex` is warped: steered there, and invertible.
-    bool warpsPointOn(const Light& light, uint32_t vertex) const {
-        return steersPointOnLight(vertex) && invertible_[size_t(light.index())];
+    // This light's inverse when its point at `vertex` is warped (steered there, and
+    // invertible); nullptr otherwise.
+    const InvertibleLight* warpsPointOn(const Light& light, uint32_t vertex) const {
+        return steersPointOnLight(vertex) ? invertible_[size_t(light.index())] : nullptr;
     }
     // Eq. (2) for one decision of a world map: the part of the map drawn from and α. With the
     // evidence weighting (the default), the credited part, and α times that part's share of
@@ -139,7 +142,7 @@ class MapGuide : public StandardSampling {
 
     const PixelMaps& maps_;
     const TaisSettings& settings_;
-    std::span<const char> invertible_;
+    std::span<const InvertibleLight* const> invertible_;
 
     int bounce_ = 0;  // non-specular surface vertices so far
     std::array<RecordSlot, kMaxRecords> records_;

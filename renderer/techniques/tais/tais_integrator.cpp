@@ -5,6 +5,7 @@
 #include "config/config_error.h"
 #include "config/json_reader.h"
 #include "render/scan_bands.h"
+#include "scene/scene_features.h"
 #include "techniques/tais/map_guide.h"
 #include "techniques/tais/tais_pixels.h"
 
@@ -38,7 +39,7 @@ namespace {
 bool samplesLights(const Scene& scene) {
     for (const auto& m : scene.materials())
         if (m->hasNonSpecular()) return true;
-    return scene.features().media;
+    return scene.hasMedia();
 }
 
 // The scatter-direction map steers surfaces whose material has no specular lobe.
@@ -51,7 +52,7 @@ bool hasNonSpecularOnlySurfaces(const Scene& scene) {
 }  // namespace
 
 bool sceneHasDecision(const Scene& scene, MapKind kind) {
-    const SceneFeatures& f = scene.features();
+    const SceneFeatures f = sceneFeatures(scene);
     switch (kind) {
         case MapKind::Time:
             return f.motionBlur;
@@ -65,7 +66,7 @@ bool sceneHasDecision(const Scene& scene, MapKind kind) {
             return scene.lights().size() > 1 && samplesLights(scene);
         case MapKind::PointOnLight:
             for (const Light* light : scene.lights())
-                if (light->canInvertSample()) return samplesLights(scene);
+                if (invertibleLight(*light)) return samplesLights(scene);
             return false;
         case MapKind::ScatterDirection:
             return hasNonSpecularOnlySurfaces(scene);
@@ -89,7 +90,7 @@ void TaisIntegrator::prepare(const Scene& scene) {
     }
     invertible_.clear();
     for (const Light* light : scene.lights())
-        invertible_.push_back(light->canInvertSample() ? 1 : 0);
+        invertible_.push_back(invertibleLight(*light));
 }
 
 std::unique_ptr<RenderSchedule> TaisIntegrator::schedule(const ScheduleInputs& in) const {

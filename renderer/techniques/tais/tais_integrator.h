@@ -25,6 +25,7 @@
 
 #include "integrators/light_sample_estimator.h"
 #include "render/technique_registry.h"
+#include "scene/invertible_light.h"
 #include "techniques/tais/tais_settings.h"
 
 namespace rr::tais {
@@ -44,15 +45,15 @@ class TaisIntegrator final : public Integrator {
     std::unique_ptr<RenderSchedule> schedule(const ScheduleInputs& inputs) const;
 
     const TaisSettings& settings() const { return settings_; }
-    // Per scene light: whether it can invert its samples (point-on-light maps).
-    std::span<const char> invertibleLights() const { return invertible_; }
+    // Per scene light: its inverse of its sampling (point-on-light maps), or nullptr.
+    std::span<const InvertibleLight* const> invertibleLights() const { return invertible_; }
     // Next-event estimation: light sampling and the guided BSDF sample combined by MIS.
     const DirectLightingEstimator& nextEventEstimator() const { return nee_; }
 
   private:
     TaisSettings settings_;
     std::array<std::string, kMapKinds> mapPointers_;
-    std::vector<char> invertible_;
+    std::vector<const InvertibleLight*> invertible_;
     LightSampleEstimator nee_{1, /*multipleImportance=*/true};
 };
 

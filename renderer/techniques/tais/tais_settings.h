@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "integrators/path_tracer.h"
+#include "integrators/path_settings.h"
 
 namespace rr::tais {
 

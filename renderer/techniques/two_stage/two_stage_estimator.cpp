@@ -7,6 +7,7 @@
 #include "scene/lights/environment_map.h"
 #include "techniques/two_stage/hierarchical_warp.h"
 #include "techniques/two_stage/partition.h"
+#include "techniques/two_stage/two_stage_decisions.h"
 
 namespace rr::two_stage {
 
@@ -88,6 +89,15 @@ void TwoStageEstimator::prepare(const Scene& scene, const std::string& pointer) 
         throw ConfigError(pointer + "/type",
                           "two_stage works on a latitude-longitude map: give the probe's light "
                           "\"latlong_width\" to resample it at load");
+    if (settings_.peaks == PeakSource::Analytic) {
+        peakSources_ = LobePeakSources(scene.materials());
+        for (const auto& material : scene.materials())
+            if (!peakSources_.of(*material))
+                throw ConfigError(pointer + "/peaks",
+                                  "\"analytic\" splits at the materials' own lobe peaks, and a "
+                                  "material of the scene does not give its peaks: use \"bsdf\", "
+                                  "which finds peaks by sampling the BSDF");
+    }
     attach(*map);
 }
 
@@ -107,7 +117,8 @@ void TwoStageEstimator::attach(const EnvironmentMap& map) {
 bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
                                     Partition* partition) const {
     ScatteringShape shape;
-    if (!point.scatteringShape(&shape)) return false;
+    const bool analytic = settings_.peaks == PeakSource::Analytic;
+    if (!point.scatteringShape(analytic ? &peakSources_ : nullptr, &shape)) return false;
     const int height = map_->height();
     double xn, yn;
     mapPosition(*map_, shape.normal, &xn, &yn);
@@ -119,7 +130,7 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
     request.normalX = nearestGrid(xn);
     request.normalY = nearestGrid(yn);
     request.splits = settings_.splitsFor(samples);
-    if (settings_.peaks == PeakSource::Analytic)
+    if (analytic)
         for (int i = 0; i < shape.peaks.count; ++i) {
             double x, y;
             mapPosition(*map_, shape.peaks.directions[size_t(i)], &x, &y);
@@ -131,9 +142,8 @@ bool TwoStageEstimator::partitionAt(ShadingPoint& point, uint32_t samples,
     for (uint32_t k = 0; k < searches; ++k) {
         Vec3 wi;
         float pdf;
-        if (!point.sampleScattering(point.decide1D(Decision::PeakLobe, k, searches),
-                                    point.decide2D(Decision::PeakDirection, k, searches), &wi,
-                                    &pdf))
+        if (!point.sampleScattering(point.decide1D(kPeakLobe, k, searches),
+                                    point.decide2D(kPeakDirection, k, searches), &wi, &pdf))
             continue;
         double x, y;
         mapPosition(*map_, wi, &x, &y);

@@ -8,7 +8,8 @@
 //
 // The scene's lights must be one environment map in the latitude-longitude layout (a probe is
 // resampled at load with the light's `latlong_width`); the estimate covers all of its light
-// (FoundEmission::Excluded). Surfaces only.
+// (FoundEmission::Excluded). Surfaces only. Analytic peaks (the default) need every material of
+// the scene to give its lobe peaks (scene/lobe_peaks.h); `bsdf` peaks need nothing of them.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +18,7 @@
 
 #include "integrators/direct_lighting_estimator.h"
 #include "scene/lights/env_layout.h"
+#include "scene/lobe_peaks.h"
 #include "techniques/two_stage/partition.h"
 #include "techniques/two_stage/summed_area_table.h"
 
@@ -65,7 +67,8 @@ class TwoStageEstimator final : public DirectLightingEstimator {
     FoundEmission foundEmission() const override { return FoundEmission::Excluded; }
     uint32_t decisionRepeats() const override;
     bool worksInMedia() const override { return false; }
-    // Checks the scene's lights and attaches the map.
+    // Checks the scene's lights and, for analytic peaks, that its materials give theirs
+    // (scene/lobe_peaks.h), and attaches the map.
     void prepare(const Scene& scene, const std::string& pointer) override;
     // Builds the summed-area table of `map` (lat-long layout), which must outlive the
     // estimator.
@@ -104,6 +107,7 @@ class TwoStageEstimator final : public DirectLightingEstimator {
     const EnvironmentMap* map_ = nullptr;
     const LatLongLayout* layout_ = nullptr;  // the map's (final: calls need no indirection)
     SummedAreaTable table_;
+    LobePeakSources peakSources_;  // analytic peaks: the scene's materials' (prepare)
     // The direction factors of the map's grid lines (height + 1 rows, width + 1 columns):
     // stage 1 evaluates f at grid points, which then need no trigonometry.
     std::vector<LatLongLayout::RowFactor> rowFactors_;

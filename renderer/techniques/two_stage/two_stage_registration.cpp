@@ -1,6 +1,7 @@
 // The `two_stage` estimator and integrator as scenes name them (configs/README.md).
 #include "config/json_reader.h"
 #include "render/technique_registry.h"
+#include "techniques/two_stage/two_stage_decisions.h"
 #include "techniques/two_stage/two_stage_integrator.h"
 
 namespace rr::two_stage {
@@ -97,6 +98,7 @@ BuiltIntegrator makeIntegrator(ObjectReader& json, const IntegratorContext&) {
 void registerTechnique(TechniqueRegistry& registry) {
     registry.addEstimator("two_stage", kEstimatorKeys, makeEstimator);
     registry.addIntegrator("two_stage", kIntegratorKeys, makeIntegrator, /*rendersMedia=*/false);
+    registry.addDecisions(kDecisions);
 }
 
 }  // namespace rr::two_stage
