@@ -129,13 +129,18 @@ std::unique_ptr<Texture<T>> makeImage(ObjectReader& j, Range range, const AssetR
 }
 
 template <class T>
-TexturePtr<T> makeTexture(ObjectReader& j, Range range, const AssetResolver& assets) {
+const TypeTable<Texture<T>, Range, const AssetResolver&>& textureTypes() {
     static const TypeTable<Texture<T>, Range, const AssetResolver&> table{
         {"checker", {makeChecker<T>, &kCheckerKeys}},
         {"gradient", {makeGradient<T>, &kGradientKeys}},
         {"image", {makeImage<T>, &kImageKeys}},
     };
-    return buildByType(j, "texture", table, range, assets);
+    return table;
+}
+
+template <class T>
+TexturePtr<T> makeTexture(ObjectReader& j, Range range, const AssetResolver& assets) {
+    return buildByType(j, "texture", textureTypes<T>(), range, assets);
 }
 
 // A texture object, or a constant (required when there is no fallback).
@@ -180,7 +185,7 @@ KeySpec squaresKey() {
 }
 
 std::vector<std::pair<std::string, const KeyTable*>> textureTypeKeys() {
-    return {{"checker", &kCheckerKeys}, {"gradient", &kGradientKeys}, {"image", &kImageKeys}};
+    return typeKeys(textureTypes<float>());  // colour textures take the same keys
 }
 
 Checkerboard readCheckerboard(ObjectReader& json) {
