@@ -357,7 +357,7 @@ TEST(TwoStageSampling, NegativeControlLeafUniformDensityIsRejected) {
     std::vector<double> expected(tally.counts.size(), 0.0);
     for (int y = 0; y < map->height(); ++y)
         for (int x = 0; x < map->width(); ++x) {
-            const two_stage::Region& leaf = partition.region(partition.leafAt(x + 0.5, y + 0.5));
+            const two_stage::Region& leaf = partition.region(partition.leafAt(x, y));
             if (y < partition.root().y0 || y >= partition.root().y1) continue;
             expected[size_t(y / kCellSide) * cols + x / kCellSide] +=
                 kWarps * leaf.weight / partition.root().weight / double(leaf.area());

@@ -42,7 +42,10 @@ class ProductFactor {
 struct Region {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;         // texels [x0, x1) × [y0, y1)
     double f00 = 0, f10 = 0, f01 = 0, f11 = 0;  // f at (x0, y0), (x1, y0), (x0, y1), (x1, y1)
-    double sum = 0;                             // the summed-area table over the region
+    // The summed-area table's entries at the same corners: a split reads only the two at its
+    // new grid points.
+    double sat00 = 0, sat10 = 0, sat01 = 0, sat11 = 0;
+    double sum = 0;   // the summed-area table over the region
     int childA = -1;  // the children are childA (lower coordinates) and childA + 1; -1: a leaf
     bool splitX = false;
     int splitAt = 0;
@@ -86,9 +89,8 @@ class Partition {
 
     const Region& root() const { return regions_[0]; }
     const Region& region(int i) const { return regions_[size_t(i)]; }
-    // The leaf that texel-space point (x, y) falls in (points on a split line go to the second
-    // child).
-    int leafAt(double x, double y) const;
+    // The leaf holding texel (x, y), x ∈ [0, W).
+    int leafAt(int x, int y) const;
     // The floor added to every corner f in the weights (and below the leaves, in the warp).
     double floor() const { return floor_; }
     const PartitionStats& stats() const { return stats_; }
