@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "math/frame.h"
+#include "math/sincos_pi.h"
 #include "sampling/hash.h"
 #include "sampling/warps.h"
 #include "support/chi2.h"
@@ -347,6 +348,27 @@ TEST(Frame, FromNormalAndTangentIsOrthonormalWithXAlongTheTangent) {
         const Frame h(n);
         EXPECT_EQ(g.s.x, h.s.x);
         EXPECT_EQ(g.t.y, h.t.y);
+    }
+}
+
+// sinCosPi (math/sincos_pi.h), which environment-map layouts use for every direction: within
+// 2·10⁻⁷ of the double-precision values (3 ulp at 1) over several turns, exact at the quarter
+// turns, and odd/even as sine and cosine are.
+TEST(SinCosPi, AgreesWithDoublePrecision) {
+    double worst = 0;
+    for (int i = -3000000; i <= 3000000; ++i) {
+        const float x = float(i) * 1e-6f;
+        const SinCos sc = sinCosPi(x);
+        worst = std::max({worst, std::abs(sc.sin - std::sin(M_PI * double(x))),
+                          std::abs(sc.cos - std::cos(M_PI * double(x)))});
+        EXPECT_EQ(sinCosPi(-x).sin, -sc.sin);
+        EXPECT_EQ(sinCosPi(-x).cos, sc.cos);
+    }
+    EXPECT_LT(worst, 2e-7);
+    for (int k = -8; k <= 8; ++k) {
+        const SinCos sc = sinCosPi(0.5f * float(k));
+        EXPECT_EQ(sc.sin, k % 2 == 0 ? 0.0f : (((k % 4) + 4) % 4 == 1 ? 1.0f : -1.0f)) << k;
+        EXPECT_EQ(sc.cos, k % 2 != 0 ? 0.0f : ((k % 4) == 0 ? 1.0f : -1.0f)) << k;
     }
 }
 

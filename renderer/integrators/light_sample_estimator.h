@@ -4,6 +4,10 @@
 // technique's guide) and a point on it.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <span>
+
 #include "integrators/direct_lighting_estimator.h"
 
 namespace rr {
@@ -33,11 +37,33 @@ class LightSampleEstimator final : public DirectLightingEstimator {
 template <class Point>
 void LightSampleEstimator::estimateAt(Point& point) const {
     const float n = static_cast<float>(lightSamples_);
+    // Points whose guide draws light samples in batches get them 16 at a time, so that the
+    // lights overlap their table reads (ShadingPoint::sampleLights); the draws are the same.
+    constexpr uint32_t kBatch = 16;
+    std::array<LightDraw, kBatch> batch;
     for (uint32_t r = 0; r < lightSamples_; ++r) {
+        if constexpr (Point::kDrawsLightBatches) {
+            if (r % kBatch == 0) {
+                std::array<uint32_t, kBatch> repeats;
+                const uint32_t count = std::min(kBatch, lightSamples_ - r);
+                for (uint32_t k = 0; k < count; ++k)
+                    repeats[k] = r + k;
+                point.sampleLights(std::span(repeats.data(), count), lightSamples_,
+                                   /*standIns=*/nullptr, batch.data());
+            }
+        }
         LightSample ls;
         float pdf;
         const Light* light;
-        if (!point.sampleLight(r, lightSamples_, /*standIns=*/nullptr, &ls, &pdf, &light)) continue;
+        if constexpr (Point::kDrawsLightBatches) {
+            const LightDraw& draw = batch[r % kBatch];
+            if (!draw.drawn) continue;
+            ls = draw.sample;
+            pdf = draw.pdf;
+            light = draw.light;
+        } else if (!point.sampleLight(r, lightSamples_, /*standIns=*/nullptr, &ls, &pdf, &light)) {
+            continue;
+        }
         const Rgb f = point.scattering(ls.direction);
         if (f.isBlack()) continue;
         float survival;

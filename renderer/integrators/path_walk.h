@@ -94,7 +94,7 @@ class PathWalk {
     const PixelSample& sample_;
     RayCounters& rays_;
     const int maxDepth_, rrDepth_;
-    const float rrSurvival_;  // 0: throughput-driven
+    const float rrSurvival_;   // 0: throughput-driven
     const float rrThreshold_;  // throughput-driven roulette only below this survival
     const DirectLightingEstimator& nee_;
     const PixelRecordSlot pixel_;
@@ -114,8 +114,8 @@ class PathWalk {
     // finds the light the path hits, for MIS.
     float scatterPdf_ = 0;
     LightReference previous_{Vec3(0.0f)};  // the last scattering vertex, for MIS
-    int depth_ = 0;      // scattering events so far: the index of the next vertex
-    int crossings_ = 0;  // index-matched boundaries passed
+    int depth_ = 0;                        // scattering events so far: the index of the next vertex
+    int crossings_ = 0;                    // index-matched boundaries passed
     // The current ray's free-flight survival budget (medium.h); 0 until drawn.
     float flightBudget_ = 0;
 };

@@ -66,6 +66,14 @@ struct VertexOutput {
     }
 };
 
+// Whether a guide draws light samples in batches (StandardSamplingWith::sampleLights); a guide
+// that steers light samples one at a time (TAIS's) does not.
+template <class Guide>
+concept DrawsLightBatches = requires(Guide& g, uint32_t index, std::span<const uint32_t> repeats,
+                                     LightDraw* out) {
+    g.sampleLights(index, repeats, index, nullptr, LightReference(Vec3(0.0f)), 0.0f, out);
+};
+
 template <bool kMedia, PathGuide Guide>
 class SurfaceVertex final : public ShadingPoint {
   public:
@@ -87,6 +95,15 @@ class SurfaceVertex final : public ShadingPoint {
                      LightSample* ls, float* pdf, const Light** light) override {
         return out_.guide.sampleLight(out_.vertex, repeat, count, standIns, lightReference(),
                                       hit_.time, ls, pdf, light);
+    }
+    static constexpr bool kDrawsLightBatches = DrawsLightBatches<Guide>;
+    void sampleLights(std::span<const uint32_t> repeats, uint32_t count,
+                      const LightStandIns* standIns, LightDraw* out) override {
+        if constexpr (kDrawsLightBatches)
+            out_.guide.sampleLights(out_.vertex, repeats, count, standIns, lightReference(),
+                                    hit_.time, out);
+        else
+            ShadingPoint::sampleLights(repeats, count, standIns, out);
     }
     Rgb scattering(const Vec3& wi) const override {
         return material_.eval(ctx_, wo_, frame_.toLocal(wi));
@@ -200,6 +217,14 @@ class MediumVertex final : public ShadingPoint {
                      LightSample* ls, float* pdf, const Light** light) override {
         return out_.guide.sampleLight(out_.vertex, repeat, count, standIns, position_, time_, ls,
                                       pdf, light);
+    }
+    static constexpr bool kDrawsLightBatches = DrawsLightBatches<Guide>;
+    void sampleLights(std::span<const uint32_t> repeats, uint32_t count,
+                      const LightStandIns* standIns, LightDraw* out) override {
+        if constexpr (kDrawsLightBatches)
+            out_.guide.sampleLights(out_.vertex, repeats, count, standIns, position_, time_, out);
+        else
+            ShadingPoint::sampleLights(repeats, count, standIns, out);
     }
     Rgb scattering(const Vec3& wi) const override {
         const float p = medium_.phase().eval(wo_, wi);

@@ -45,6 +45,10 @@ class ShadingPoint {
   public:
     virtual ~ShadingPoint() = default;
 
+    // Whether sampleLights() draws batches in one go (a vertex type whose guide does), or one
+    // sample at a time; for callers that interleave draws with other work per sample.
+    static constexpr bool kDrawsLightBatches = false;
+
     // Draw `repeat` of `count` of a light and a point on it (the light-selection and
     // light-point decisions of this vertex), from the light's stand-in in `standIns` when it has
     // one there, from its own sampler otherwise (standIns nullptr: always): the sample, its
@@ -52,6 +56,15 @@ class ShadingPoint {
     // sampled.
     virtual bool sampleLight(uint32_t repeat, uint32_t count, const LightStandIns* standIns,
                              LightSample* sample, float* pdf, const Light** light) = 0;
+    // Draws `repeats` (each of `count`) at once, out[i] as sampleLight() draws repeats[i], so
+    // that the lights can overlap their memory reads (Light::sampleMany): for estimators that
+    // draw many light samples at one point (resampling's candidates).
+    virtual void sampleLights(std::span<const uint32_t> repeats, uint32_t count,
+                              const LightStandIns* standIns, LightDraw* out) {
+        for (size_t i = 0; i < repeats.size(); ++i)
+            out[i].drawn = sampleLight(repeats[i], count, standIns, &out[i].sample, &out[i].pdf,
+                                       &out[i].light);
+    }
     // f(wo, wi)·|cos θi| at a surface; the phase function (grey) in a medium.
     virtual Rgb scattering(const Vec3& wi) const = 0;
     // The density with which this vertex's own scattering sample (BSDF or phase function,

@@ -21,6 +21,7 @@
 // sample weight and MIS weight, so that the estimate stays unbiased.
 #pragma once
 
+#include <array>
 #include <concepts>
 #include <utility>
 
@@ -100,6 +101,19 @@ class StandardSamplingWith {
         *chosen = light;
         return true;
     }
+    // Draws `repeats` (each of `count`) of sampleLight() at once (ShadingPoint::sampleLights):
+    // every draw's light and coordinates first, then each light's draws together
+    // (Light::sampleMany), so that a light's table reads overlap. Each draw is what
+    // sampleLight() would give it.
+    void sampleLights(uint32_t vertex, std::span<const uint32_t> repeats, uint32_t count,
+                      const LightStandIns* standIns, const LightReference& reference, float time,
+                      LightDraw* out) {
+        constexpr size_t kChunk = 16;
+        for (size_t start = 0; start < repeats.size(); start += kChunk)
+            sampleLightChunk(vertex,
+                             repeats.subspan(start, std::min(kChunk, repeats.size() - start)),
+                             count, standIns, reference, time, out + start);
+    }
     // A light sample's contribution (already weighted and scaled by the path) at `vertex`.
     void lightContribution(uint32_t /*vertex*/, const Rgb& /*contribution*/) {}
     // Density with which sampleLight() at `vertex` picks `light` and its point `hit`.
@@ -138,6 +152,55 @@ class StandardSamplingWith {
     const Scene& scene() const { return scene_; }
 
   private:
+    // sampleLights() for at most 16 draws.
+    void sampleLightChunk(uint32_t vertex, std::span<const uint32_t> repeats, uint32_t count,
+                          const LightStandIns* standIns, const LightReference& reference,
+                          float time, LightDraw* out) {
+        const uint32_t n = uint32_t(repeats.size());
+        std::array<float, 16> selectPmf;
+        std::array<Vec2, 16> u;
+        std::array<bool, 16> done{};
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t repeat = repeats[i];
+            out[i].light = selection_.select(
+                sample_.get1D(DecisionSite{Decision::LightSelect, vertex, repeat, count}),
+                reference.point, &selectPmf[i]);
+            u[i] = sample_.get2D(DecisionSite{Decision::LightPoint, vertex, repeat, count});
+            out[i].drawn = false;
+            done[i] = !out[i].light;
+        }
+        // Each light's draws in one call, in the order of their first draw.
+        std::array<Vec2, 16> us;
+        std::array<LightSample, 16> samples;
+        std::array<bool, 16> drawn;
+        std::array<uint32_t, 16> which;
+        for (uint32_t i = 0; i < n; ++i) {
+            if (done[i]) continue;
+            const Light& light = *out[i].light;
+            uint32_t k = 0;
+            for (uint32_t j = i; j < n; ++j)
+                if (!done[j] && out[j].light == &light) {
+                    which[k] = j;
+                    us[k++] = u[j];
+                    done[j] = true;
+                }
+            const LightStandIn* standIn = standIns ? standIns->of(light) : nullptr;
+            if (standIn) {
+                for (uint32_t m = 0; m < k; ++m)
+                    drawn[m] = standIn->sampleStandIn(reference, us[m], time, &samples[m]);
+            } else {
+                light.sampleMany(reference, std::span(us.data(), k), time, samples.data(),
+                                 drawn.data());
+            }
+            for (uint32_t m = 0; m < k; ++m) {
+                LightDraw& d = out[which[m]];
+                d.drawn = drawn[m];
+                d.sample = samples[m];
+                d.pdf = selectPmf[which[m]] * samples[m].pdf;
+            }
+        }
+    }
+
     const Scene& scene_;
     const PixelSample& sample_;
     Selection selection_;

@@ -22,21 +22,27 @@ double sphericalTriangleArea(const DVec3& a, const DVec3& b, const DVec3& c) {
     return 2 * std::atan2(triple, 1 + dot(a, b) + dot(b, c) + dot(c, a));
 }
 
-DVec3 sampleSphericalTriangle(const DVec3& a, const DVec3& b, const DVec3& c, double area, Vec2 u) {
+SphericalTriangleSampler::SphericalTriangleSampler(const DVec3& a, const DVec3& b, const DVec3& c,
+                                                   double area)
+    : a_(a), b_(b), tangentC_(arcTangent(a, c)), area_(area), cosC_(dot(a, b)) {
+    const DVec3 tangentB = arcTangent(a, b);
+    cosAlpha_ = clampUnit(dot(tangentB, tangentC_));
+    sinAlpha_ = length(cross(tangentB, tangentC_));
+    alpha_ = std::atan2(sinAlpha_, cosAlpha_);  // the angle at a
+}
+
+DVec3 SphericalTriangleSampler::sample(Vec2 u) const {
     // Arvo 1995, §3: choose the sub-triangle (a, b, ĉ) of area u₁·Ω, with ĉ on the arc from a
     // to c, by inverting the area formula for cos of the arc aĉ (q); then a point on the arc
     // from b to ĉ with cos of its distance to b uniform between 1 and b·ĉ.
-    const DVec3 tb = arcTangent(a, b), tc = arcTangent(a, c);
-    const double cosAlpha = clampUnit(dot(tb, tc)), sinAlpha = length(cross(tb, tc));
-    const double alpha = std::atan2(sinAlpha, cosAlpha);  // the angle at a
-    const double subArea = double(u.x) * area;
-    const double s = std::sin(subArea - alpha), t = std::cos(subArea - alpha);
-    const double uu = t - cosAlpha;
-    const double v = s + sinAlpha * dot(a, b);  // dot(a, b) = cos of the side c
-    const double q = clampUnit(((v * t - uu * s) * cosAlpha - v) / ((v * s + uu * t) * sinAlpha));
-    const DVec3 cHat = a * q + tc * std::sqrt(std::max(0.0, 1 - q * q));
-    const double z = 1 - double(u.y) * (1 - dot(cHat, b));
-    return b * z + arcTangent(b, cHat) * std::sqrt(std::max(0.0, 1 - z * z));
+    const double subArea = double(u.x) * area_;
+    const double s = std::sin(subArea - alpha_), t = std::cos(subArea - alpha_);
+    const double uu = t - cosAlpha_;
+    const double v = s + sinAlpha_ * cosC_;
+    const double q = clampUnit(((v * t - uu * s) * cosAlpha_ - v) / ((v * s + uu * t) * sinAlpha_));
+    const DVec3 cHat = a_ * q + tangentC_ * std::sqrt(std::max(0.0, 1 - q * q));
+    const double z = 1 - double(u.y) * (1 - dot(cHat, b_));
+    return b_ * z + arcTangent(b_, cHat) * std::sqrt(std::max(0.0, 1 - z * z));
 }
 
 }  // namespace rr

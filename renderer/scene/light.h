@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "math/rgb.h"
 #include "math/vector.h"
@@ -41,12 +42,32 @@ struct LightSample {
     bool isDelta = false;
 };
 
+class Light;
+
+// A light sample as next-event estimation draws it, in batches (ShadingPoint::sampleLights):
+// the light chosen, its sample, and the density of both (selection × point, per solid angle);
+// `drawn` false when none was drawn.
+struct LightDraw {
+    LightSample sample;
+    float pdf = 0;
+    const Light* light = nullptr;
+    bool drawn = false;
+};
+
 class Light {
   public:
     virtual ~Light() = default;
 
     virtual bool sample(const LightReference& reference, Vec2 u, float time,
                         LightSample* out) const = 0;
+    // sample() for each of several coordinates at once: out[i] and drawn[i] as sample() with
+    // u[i] gives them. Lights whose sampling reads large tables overlap the draws' cache misses
+    // (resampling draws many candidates per shading point).
+    virtual void sampleMany(const LightReference& reference, std::span<const Vec2> u, float time,
+                            LightSample* out, bool* drawn) const {
+        for (size_t i = 0; i < u.size(); ++i)
+            drawn[i] = sample(reference, u[i], time, &out[i]);
+    }
     // Solid-angle density with which sample() from `reference` yields the point `hit` on this
     // light; zero for delta lights.
     virtual float pdf(const Vec3& reference, const SurfaceHit& hit) const = 0;

@@ -14,6 +14,11 @@ float areaToSolidAngle(float areaPdf, const Vec3& reference, const Vec3& positio
 }
 
 bool Shape::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
+    return sampleDirectionByArea(reference, u, time, out);
+}
+
+bool Shape::sampleDirectionByArea(const Vec3& reference, Vec2 u, float time,
+                                  ShapeSample* out) const {
     *out = sampleArea(u);
     out->position += offsetAt(time);
     out->errorScale += motionScale();

@@ -2,16 +2,18 @@
 
 #include <cmath>
 
+#include "math/sincos_pi.h"
+
 namespace rr {
 
 LatLongLayout::RowFactor LatLongLayout::rowFactor(float t) {
-    const float theta = kPi * t;
-    return {std::sin(theta), std::cos(theta)};
+    const SinCos theta = sinCosPi(t);  // θ = πt
+    return {theta.sin, theta.cos};
 }
 
 LatLongLayout::ColumnFactor LatLongLayout::columnFactor(float s) {
-    const float phi = kTwoPi * s;
-    return {std::sin(phi), std::cos(phi)};
+    const SinCos phi = sinCosPi(2 * s);  // φ = 2πs
+    return {phi.sin, phi.cos};
 }
 
 bool LatLongLayout::direction(Vec2 st, Vec3* w, float* jacobian) const {
@@ -30,7 +32,7 @@ Vec2 LatLongLayout::imagePoint(const Vec3& w) const {
 }
 
 float LatLongLayout::jacobian(Vec2 st) const {
-    return 2 * kPi * kPi * std::sin(kPi * st.y);
+    return 2 * kPi * kPi * rowFactor(st.y).sinTheta;
 }
 
 namespace {
@@ -39,7 +41,7 @@ namespace {
 float probeJacobianUV(float rho) {
     if (rho >= 1) return 0;
     if (rho < 1e-6f) return kPi * kPi;
-    return std::max(0.0f, kPi * std::sin(kPi * rho) / rho);
+    return std::max(0.0f, kPi * (sinCosPi(rho).sin / rho));
 }
 
 }  // namespace
@@ -48,11 +50,12 @@ bool ProbeLayout::direction(Vec2 st, Vec3* w, float* jacobian) const {
     const float u = 2 * st.x - 1, v = 1 - 2 * st.y;
     const float rho = std::sqrt(u * u + v * v);
     if (rho > 1) return false;
-    const float theta = kPi * rho;
+    const SinCos theta = sinCosPi(rho);  // θ = πρ
     // sin θ / ρ → π at the centre.
-    const float radial = rho > 1e-6f ? std::sin(theta) / rho : kPi;
-    *w = Vec3(-radial * u, radial * v, std::cos(theta));
-    *jacobian = 4 * probeJacobianUV(rho);
+    const float radial = rho > 1e-6f ? theta.sin / rho : kPi;
+    *w = Vec3(-radial * u, radial * v, theta.cos);
+    // probeJacobianUV(ρ) from the sine already taken (the same arithmetic, so the same value).
+    *jacobian = rho < 1 ? 4 * std::max(0.0f, kPi * radial) : 0.0f;
     return true;
 }
 

@@ -1,6 +1,7 @@
 #include "scene/lights/environment_map.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -66,7 +67,7 @@ EnvironmentMap::EnvironmentMap(RgbImage image, std::unique_ptr<EnvLayout> layout
     radianceIntegral_ = Rgb(float(integral[0]), float(integral[1]), float(integral[2]));
     // The map's own sampling tables, only when light samples follow the map.
     if (sampling_ != EnvSampling::Luminance) return;
-    distribution_ = Distribution2D(weights, width, height);
+    texels_ = TexelSampler(weights, image_.pixels, width, height);
     buildProxy(weights, jacobians);
 }
 
@@ -128,20 +129,44 @@ bool EnvironmentMap::sample(const LightReference& reference, Vec2 u, float,
         out->radiance = escapedRadiance(w);
         return !out->radiance.isBlack();
     }
-    float imagePdf;
-    const Vec2 st = distribution_.sample(u, &imagePdf);
+    TexelSampler::Ticket ticket;
+    texels_.begin(u, &ticket);
+    texels_.locate(&ticket);
+    return sampleFromTexel(reference, ticket, out);
+}
+
+bool EnvironmentMap::sampleFromTexel(const LightReference& reference,
+                                     const TexelSampler::Ticket& ticket, LightSample* out) const {
+    TexelSampler::Draw draw;
     Vec3 local;
     float jacobian;
     // A point of a probe's rim texel may lie outside the disc: no direction, no sample (the
     // density below is then that of a distribution of total mass slightly below 1, which
     // keeps the estimator unbiased).
-    if (imagePdf == 0 || !layout_->direction(st, &local, &jacobian)) return false;
+    if (!texels_.finish(ticket, &draw) || !layout_->direction(draw.point, &local, &jacobian) ||
+        !(jacobian > 0))
+        return false;
     setDirection(reference.point, local, out);
-    // Radiance and density of the direction itself, exactly as escaped rays and MIS see them
-    // (the texel is found again from the direction, so the three always agree).
-    out->radiance = escapedRadiance(out->direction);
-    out->pdf = directionPdf(reference, out->direction);
-    return out->pdf > 0 && !out->radiance.isBlack();
+    out->radiance = draw.value;
+    out->pdf = draw.density / jacobian;
+    return std::isfinite(out->pdf) && !out->radiance.isBlack();
+}
+
+void EnvironmentMap::sampleMany(const LightReference& reference, std::span<const Vec2> u,
+                                float time, LightSample* out, bool* drawn) const {
+    if (sampling_ != EnvSampling::Luminance)
+        return Light::sampleMany(reference, u, time, out, drawn);
+    constexpr size_t kChunk = 16;
+    std::array<TexelSampler::Ticket, kChunk> tickets;
+    for (size_t first = 0; first < u.size(); first += kChunk) {
+        const size_t count = std::min(kChunk, u.size() - first);
+        for (size_t i = 0; i < count; ++i)
+            texels_.begin(u[first + i], &tickets[i]);
+        for (size_t i = 0; i < count; ++i)
+            texels_.locate(&tickets[i]);
+        for (size_t i = 0; i < count; ++i)
+            drawn[first + i] = sampleFromTexel(reference, tickets[i], &out[first + i]);
+    }
 }
 
 bool EnvironmentMap::sampleStandIn(const LightReference& reference, Vec2 u, float time,
@@ -166,11 +191,16 @@ Rgb EnvironmentMap::escapedRadiance(const Vec3& w) const {
     return image_.pixels[size_t(texelIndex(layout_->imagePoint(toWorld_.toLocal(w))))];
 }
 
+float EnvironmentMap::imageDensity(Vec2 st) const {
+    const int texel = texelIndex(st);
+    return texels_.density(texel % image_.width, texel / image_.width);
+}
+
 float EnvironmentMap::directionPdf(const LightReference& reference, const Vec3& w) const {
     if (sampling_ != EnvSampling::Luminance) return envDirectionPdf(sampling_, reference, w);
     const Vec2 st = layout_->imagePoint(toWorld_.toLocal(w));
     const float jacobian = layout_->jacobian(st);
-    return jacobian > 0 ? distribution_.pdf(st) / jacobian : 0.0f;
+    return jacobian > 0 ? imageDensity(st) / jacobian : 0.0f;
 }
 
 bool EnvironmentMap::invertSample(const LightReference& reference, const Vec3& direction,
@@ -181,8 +211,8 @@ bool EnvironmentMap::invertSample(const LightReference& reference, const Vec3& d
     // rounding). The image point is found exactly as directionPdf finds it, so invertSample
     // succeeds exactly where the density of the direction is positive.
     const Vec2 st = layout_->imagePoint(toWorld_.toLocal(direction));
-    if (!(layout_->jacobian(st) > 0) || !(distribution_.pdf(st) > 0)) return false;
-    *u = distribution_.invert(st);
+    if (!(layout_->jacobian(st) > 0) || !(imageDensity(st) > 0)) return false;
+    *u = texels_.invert(st);
     return true;
 }
 

@@ -7,18 +7,21 @@
 // bleed into their neighbours as they would under bilinear filtering.
 //
 // Importance sampling: a texel is chosen with probability ∝ luminance × its solid angle (the
-// mean of dω/(ds dt) over it; Distribution2D), a point uniformly inside it, and the direction
+// mean of dω/(ds dt) over it; TexelSampler), a point uniformly inside it, and the direction
 // there; the solid-angle density is p(s, t) / (dω/(ds dt)) (the change of variables from image
-// to sphere).
+// to sphere). A sample carries the radiance and density of the texel it was drawn in, read from
+// the sampler's guide slot with the draw, not looked up again from its direction: escaped rays
+// and MIS find the same texel and density for that direction except where float rounding moves
+// the direction across a texel edge (a few in 10⁵ draws, measured in the tests), as pbrt-v4's
+// image light does.
 //
 // `sampling` other than `luminance` (env_sampling.h) ignores the map when drawing directions:
 // cosine-weighted about the receiver's normal or uniform, as pbrt-v1's plain `infinite` light,
 // for baselines configured like the papers' renderers. The stand-in is then sample() itself.
 //
 // Resampling's stand-in (sampleStandIn): the same map coarsened to blocks of texels, so that a
-// candidate reads two small tables that stay in cache instead of a megabyte-scale texel table
-// and the texel (about 400 ns per candidate on Galileo's 1000 × 1000 probe, against a shadow
-// ray's 150). A block is chosen with probability ∝ its texels' weights, a point uniformly in it;
+// candidate reads two small tables that stay in cache instead of the texel tables (since those
+// were laid out for the cache, issue 40, the stand-in saves little: ĝ is then exact). A block is chosen with probability ∝ its texels' weights, a point uniformly in it;
 // its radiance is the block's solid-angle-weighted mean. Any block holding a texel of non-zero
 // weight has non-zero probability and radiance, so RIS stays unbiased with it.
 #pragma once
@@ -29,6 +32,7 @@
 #include "io/rgb_image_io.h"
 #include "math/frame.h"
 #include "sampling/distribution2d.h"
+#include "sampling/texel_sampler.h"
 #include "scene/invertible_light.h"
 #include "scene/light.h"
 #include "scene/light_stand_in.h"
@@ -47,6 +51,9 @@ class EnvironmentMap final : public Light, public LightStandIn, public Invertibl
 
     bool sample(const LightReference& reference, Vec2 u, float time,
                 LightSample* out) const override;
+    // Locates every draw in the texel tables before reading any texel record.
+    void sampleMany(const LightReference& reference, std::span<const Vec2> u, float time,
+                    LightSample* out, bool* drawn) const override;
     bool sampleStandIn(const LightReference& reference, Vec2 u, float time,
                        LightSample* out) const override;
     Rgb exactRadiance(const LightSample& s) const override { return escapedRadiance(s.direction); }
@@ -59,7 +66,7 @@ class EnvironmentMap final : public Light, public LightStandIn, public Invertibl
     Rgb escapedRadiance(const Vec3& w) const override;
     float directionPdf(const LightReference& reference, const Vec3& w) const override;
     // sample() backwards: the direction into the map's frame, its image point (the layout's
-    // imagePoint), and the u that Distribution2D::sample maps there (Distribution2D::invert).
+    // imagePoint), and the u that TexelSampler::sample maps there (TexelSampler::invert).
     // False where the density is zero, as no u yields the direction there: the lat-long poles
     // and the probe's rim (no solid angle), texels of zero weight (black ones, the probe's
     // masked ones). Other `sampling`: invertEnvDirection.
@@ -93,6 +100,11 @@ class EnvironmentMap final : public Light, public LightStandIn, public Invertibl
     };
 
     int texelIndex(Vec2 st) const;
+    // sample()'s end with `luminance` sampling, from the texel the tables found.
+    bool sampleFromTexel(const LightReference& reference, const TexelSampler::Ticket& ticket,
+                         LightSample* out) const;
+    // The sampling density per unit image area at `st` (0 without the map's tables).
+    float imageDensity(Vec2 st) const;
     // A sample's direction (from the map's frame) and the shadow-ray target far along it.
     void setDirection(const Vec3& reference, const Vec3& local, LightSample* out) const;
     void buildProxy(const std::vector<float>& weights, const std::vector<float>& jacobians);
@@ -100,7 +112,7 @@ class EnvironmentMap final : public Light, public LightStandIn, public Invertibl
     RgbImage image_;  // scaled and masked
     std::unique_ptr<EnvLayout> layout_;
     Frame toWorld_;
-    Distribution2D distribution_;
+    TexelSampler texels_;  // `luminance` sampling only
     Rgb radianceIntegral_;
     Proxy proxy_;
     EnvSampling sampling_;

@@ -143,48 +143,79 @@ ShapeSample Polygon::sampleArea(Vec2 u) const {
     return s;
 }
 
-double Polygon::fanAreas(const Vec3& reference, const Vec3& offset,
-                         std::array<double, kMaxVertices>* areas) const {
-    const DVec3 r(reference), v0 = normalize(DVec3(vertices_[0] + offset) - r);
+// The spherical areas of the fan triangles seen from `reference`, at index k ≥ 2, and their sum;
+// each triangle's sampler is made when first drawn from (a sample needs one, its pdf none).
+struct Polygon::FanView {
+    const Polygon* polygon = nullptr;
+    Vec3 reference, offset;
     double total = 0;
-    DVec3 previous = normalize(DVec3(vertices_[1] + offset) - r);
-    for (size_t k = 2; k < vertices_.size(); ++k) {
-        const DVec3 next = normalize(DVec3(vertices_[k] + offset) - r);
-        (*areas)[k] = sphericalTriangleArea(v0, previous, next);
-        total += (*areas)[k];
-        previous = next;
+    std::array<double, kMaxVertices> areas;
+    std::array<DVec3, kMaxVertices> directions;  // unit, from the reference to each vertex
+    std::array<bool, kMaxVertices> hasSampler;
+    std::array<SphericalTriangleSampler, kMaxVertices> samplers;
+
+    const SphericalTriangleSampler& sampler(size_t k) {
+        if (!hasSampler[k]) {
+            samplers[k] =
+                SphericalTriangleSampler(directions[0], directions[k - 1], directions[k], areas[k]);
+            hasSampler[k] = true;
+        }
+        return samplers[k];
     }
-    return total;
+};
+
+Polygon::FanView& Polygon::fanView(const Vec3& reference, const Vec3& offset) const {
+    // A view is a pure function of its key, so keeping views changes no result: images stay
+    // independent of threads and of the order of their work.
+    constexpr size_t kViews = 4;
+    thread_local std::array<FanView, kViews> views;
+    thread_local size_t oldest = 0;
+    for (FanView& view : views)
+        if (view.polygon == this && view.reference == reference && view.offset == offset)
+            return view;
+    FanView& view = views[oldest];
+    oldest = (oldest + 1) % kViews;
+    view.polygon = this;
+    view.reference = reference;
+    view.offset = offset;
+    const DVec3 r(reference);
+    for (size_t k = 0; k < vertices_.size(); ++k)
+        view.directions[k] = normalize(DVec3(vertices_[k] + offset) - r);
+    view.total = 0;
+    for (size_t k = 2; k < vertices_.size(); ++k) {
+        view.areas[k] =
+            sphericalTriangleArea(view.directions[0], view.directions[k - 1], view.directions[k]);
+        view.total += view.areas[k];
+        view.hasSampler[k] = false;
+    }
+    return view;
 }
 
 double Polygon::solidAngle(const Vec3& reference, const Vec3& offset) const {
-    std::array<double, kMaxVertices> areas;
-    return fanAreas(reference, offset, &areas);
+    return fanView(reference, offset).total;
 }
 
 bool Polygon::sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const {
-    if (sampling_ == PolygonSampling::Area) return Shape::sampleDirection(reference, u, time, out);
+    if (sampling_ == PolygonSampling::Area) return sampleDirectionByArea(reference, u, time, out);
     const Vec3 offset = offsetAt(time);
-    std::array<double, kMaxVertices> areas;
-    const double total = fanAreas(reference, offset, &areas);
-    if (!(total >= kMinSolidAngle)) return Shape::sampleDirection(reference, u, time, out);
+    // The view is the thread's: it stays valid until this thread asks for another view.
+    FanView& view = fanView(reference, offset);
+    const double total = view.total;
+    if (!(total >= kMinSolidAngle)) return sampleDirectionByArea(reference, u, time, out);
     // The fan triangles project onto the sphere of directions without overlap (the polygon is
     // convex and planar): pick one with probability ∝ its solid angle, reusing u.x.
-    const DVec3 r(reference), v0 = normalize(DVec3(vertices_[0] + offset) - r);
+    const DVec3 r(reference);
     const double target = double(u.x) * total;
     double before = 0;
     for (size_t k = 2; k < vertices_.size(); ++k) {
-        const double area = areas[k];
+        const double area = view.areas[k];
         if (before + area <= target && k + 1 < vertices_.size()) {
             before += area;
             continue;
         }
         if (!(area > 0)) return false;  // a degenerate last triangle, reached by rounding
         const float remapped = float(std::clamp((target - before) / area, 0.0, 1.0));
-        const DVec3 a = normalize(DVec3(vertices_[k - 1] + offset) - r);
-        const DVec3 b = normalize(DVec3(vertices_[k] + offset) - r);
-        const DVec3 w = sampleSphericalTriangle(v0, a, b, area,
-                                                Vec2(std::min(remapped, kOneMinusEpsilon), u.y));
+        const DVec3 w = view.sampler(k).sample(Vec2(std::min(remapped, kOneMinusEpsilon), u.y));
         // Where the direction meets the polygon's plane.
         const DVec3 n(normal_);
         const double t = dot(DVec3(vertices_[0] + offset) - r, n) / dot(w, n);

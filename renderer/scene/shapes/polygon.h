@@ -53,6 +53,11 @@ class Polygon final : public Shape {
     bool sampleDirection(const Vec3& reference, Vec2 u, float time,
                          ShapeSample* out) const override;
     float directionPdf(const Vec3& reference, const SurfaceHit& hit) const override;
+    // Arvo's sampler costs several times area sampling (about 3 inverse trigonometric
+    // functions per fan triangle, and one of each direction's sine and cosine).
+    bool samplesDirectionsExpensively() const override {
+        return sampling_ == PolygonSampling::SolidAngle;
+    }
 
     const Vec3& normal() const { return normal_; }
     // The solid angle the polygon (displaced by `offset`) subtends at `reference`.
@@ -67,11 +72,12 @@ class Polygon final : public Shape {
     static constexpr int kMaxVertices = 64;
 
   private:
-    // The spherical areas of the fan triangles (v0, vk−1, vk) seen from `reference`, at index
-    // k ≥ 2 of *areas (left uninitialised elsewhere), and their sum: computed once per light
-    // sample, for both the choice of a triangle and the sample in it.
-    double fanAreas(const Vec3& reference, const Vec3& offset,
-                    std::array<double, kMaxVertices>* areas) const;
+    // The fan triangles (v0, vk−1, vk) as seen from one point (polygon.cpp).
+    struct FanView;
+    // The view from `reference` with the polygon displaced by `offset`: the last few are kept
+    // per thread, as resampling's candidates and several light samples per shading point
+    // sample one polygon from one point many times.
+    FanView& fanView(const Vec3& reference, const Vec3& offset) const;
 
     std::vector<Vec3> vertices_;
     Vec3 normal_;

@@ -11,7 +11,8 @@
 //    integrand (G's other factors are in p's change of measure); f adds visibility.
 //  - source `light_proxy`: the same, but candidates come from each light's cheaper stand-in
 //    (scene/light_stand_in.h: an environment map draws blocks of texels and ĝ uses the block's
-//    mean radiance); the chosen sample is finished with the light's exact radiance. p is still
+//    mean radiance; a polygon is sampled by area); the chosen sample is finished with the
+//    light's exact radiance. p is still
 //    exact, ĝ only approximates, which eq. (1) allows. A light without a stand-in gives its
 //    own samples, as under `light`.
 //  - sources `uniform_hemisphere`, `cosine_hemisphere` (about the shading normal) and `bsdf`
@@ -29,6 +30,7 @@
 // decisions and the same arithmetic as `light` with N light samples.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "integrators/direct_lighting_estimator.h"
@@ -90,9 +92,10 @@ class RisEstimator final : public DirectLightingEstimator {
     // at most the maximum counts.
     void estimate(ShadingPoint& point, const CandidateCounts& counts) const;
 
-    // The pilot: times both stages at `point` over a few samples (all their candidates first,
-    // then the chosen ones finished, each stage timed as one block).
-    void measureCosts(ShadingPoint& point, CostTally* tally) const;
+    // The pilot: times both stages at `point` (in rounds: a round's candidates, then each of
+    // them finished, each stage timed as one block), after a round that warms up, untimed;
+    // nothing timed unless `timed` (the pilot's own warm-up).
+    void measureCosts(ShadingPoint& point, bool timed, CostTally* tally) const;
     // Adds `samples` candidates X ~ p, each finished (f with its shadow ray), to eq. (2)'s terms.
     void addVarianceTerms(ShadingPoint& point, uint32_t samples, VarianceTerms* terms) const;
 
@@ -103,6 +106,42 @@ class RisEstimator final : public DirectLightingEstimator {
     bool fromLights() const {
         return source_ == CandidateSource::Light || source_ == CandidateSource::LightProxy;
     }
+    // The candidates of one shading point in the order its samples draw them: candidate j of
+    // sample i is draw offset + i·stride + j of `repeats`, exactly as drawCandidate() gives it.
+    // Light candidates are drawn in batches that run across samples (ShadingPoint::
+    // sampleLights), so that the lights overlap their table reads; others one at a time.
+    class CandidateStream {
+      public:
+        CandidateStream(const RisEstimator& estimator, ShadingPoint& point, uint32_t samples,
+                        uint32_t candidates, uint32_t stride, uint32_t offset, uint32_t repeats)
+            : estimator_(estimator),
+              point_(point),
+              total_(samples * candidates),
+              candidates_(candidates),
+              stride_(stride),
+              offset_(offset),
+              repeats_(repeats) {}
+        // The next candidate; false when none was drawn (it still counts in M).
+        bool next(Candidate* candidate);
+
+      private:
+        static constexpr uint32_t kBatch = 16;
+        uint32_t repeatAt(uint32_t k) const {
+            return offset_ + (k / candidates_) * stride_ + k % candidates_;
+        }
+
+        const RisEstimator& estimator_;
+        ShadingPoint& point_;
+        uint32_t total_, candidates_, stride_, offset_, repeats_;
+        uint32_t position_ = 0, buffered_ = 0, used_ = 0;
+        std::array<LightDraw, kBatch> batch_{};
+    };
+
+    const LightStandIns* standIns() const {
+        return source_ == CandidateSource::LightProxy ? &standIns_ : nullptr;
+    }
+    bool candidateFrom(const ShadingPoint& point, const LightDraw& draw,
+                       Candidate* candidate) const;
     bool drawCandidate(ShadingPoint& point, uint32_t repeat, uint32_t repeats,
                        Candidate* candidate) const;
     bool drawFromMixture(ShadingPoint& point, uint32_t repeat, uint32_t repeats,

@@ -53,9 +53,9 @@ bool RisIntegrator::needsCostPilot() const {
 }
 
 void RisIntegrator::measureCosts(const Scene& scene, int x, int y, const PixelSample& sample,
-                                 RayCounters& rays, CostTally* tally) const {
+                                 RayCounters& rays, bool timed, CostTally* tally) const {
     atFirstHit(scene, x, y, sample, rays,
-               [&](ShadingPoint& point) { estimator_.measureCosts(point, tally); });
+               [&](ShadingPoint& point) { estimator_.measureCosts(point, timed, tally); });
 }
 
 void RisIntegrator::measureTerms(const Scene& scene, int x, int y, const PixelSample& sample,

@@ -52,7 +52,7 @@ class RisIntegrator final : public SampleIntegrator {
 
     // The pilot, pixel by pixel (ris_schedule.h).
     void measureCosts(const Scene& scene, int x, int y, const PixelSample& sample,
-                      RayCounters& rays, CostTally* tally) const;
+                      RayCounters& rays, bool timed, CostTally* tally) const;
     void measureTerms(const Scene& scene, int x, int y, const PixelSample& sample,
                       RayCounters& rays);
     // Between the pilot and the render: M and N from the costs (and each pixel's terms).

@@ -10,6 +10,9 @@ namespace {
 
 // The cost pilot's rays are cut into this many units of work.
 constexpr size_t kCostUnits = 16;
+// The first visits of each unit warm the caches up (the scene's and the lights' tables, cold at
+// the start of a render), untimed: the pilot measures steady-state costs.
+constexpr int kWarmUpVisits = 16;
 
 // The pilots' sample index: no kept sample has it.
 constexpr uint32_t kPilotSample = kMaxSpp;
@@ -29,7 +32,9 @@ class CostPilot final : public PixelRenderer {
 
     void render(const PixelVisit& v, PixelWork& work) override {
         const uint32_t pixel = uint32_t(v.y) * uint32_t(width_) + uint32_t(v.x);
-        integrator_.measureCosts(scene_, v.x, v.y, sampler_.at(pixel, v.first), work.rays, &tally_);
+        const bool timed = visits_++ >= kWarmUpVisits;
+        integrator_.measureCosts(scene_, v.x, v.y, sampler_.at(pixel, v.first), work.rays, timed,
+                                 &tally_);
     }
 
   private:
@@ -38,6 +43,7 @@ class CostPilot final : public PixelRenderer {
     const Scene& scene_;
     const Sampler& sampler_;
     int width_;
+    int visits_ = 0;
     CostTally tally_;
 };
 
@@ -67,7 +73,8 @@ RisSchedule::RisSchedule(RisIntegrator& integrator, const ScheduleInputs& in)
       width_(in.width),
       height_(in.height),
       grid_(in.width, in.height),
-      passes_(in.scene, integrator, in.width, in.height, in.spp, in.timeLimit, in.splattingFilm()) {}
+      passes_(in.scene, integrator, in.width, in.height, in.spp, in.timeLimit, in.splattingFilm()) {
+}
 
 void RisSchedule::addTally(const CostTally& tally) const {
     std::lock_guard lock(mutex_);

@@ -55,6 +55,10 @@ class MapGuide : public StandardSampling {
     bool sampleLight(uint32_t vertex, uint32_t repeat, uint32_t count,
                      const LightStandIns* standIns, const LightReference& reference, float time,
                      LightSample* ls, float* pdf, const Light** chosen);
+    // Not StandardSampling's batch, which would bypass the maps: one draw at a time.
+    void sampleLights(uint32_t vertex, std::span<const uint32_t> repeats, uint32_t count,
+                      const LightStandIns* standIns, const LightReference& reference, float time,
+                      LightDraw* out) = delete;
     void lightContribution(uint32_t vertex, const Rgb& contribution);
     float lightPdf(uint32_t vertex, const AreaLight& light, const LightReference& reference,
                    const SurfaceHit& hit) const;
