@@ -4,8 +4,7 @@
 // differ from sample()'s (the sample's `pdf` is the stand-in's own, exact) and may give an
 // approximate `radiance`; exactRadiance() gives the light's true radiance along the sample. A
 // light that has one also implements LightStandIn (an environment map draws from blocks of
-// texels: EnvironmentMap; an area light on a polygon sampled by solid angle draws by area:
-// AreaLight); lights without one are drawn by their own sampler in its place.
+// texels: EnvironmentMap); lights without one are drawn by their own sampler in its place.
 #pragma once
 
 #include <span>
@@ -22,18 +21,14 @@ class LightStandIn {
                                LightSample* out) const = 0;
     // The radiance that arrives along a sample of sampleStandIn().
     virtual Rgb exactRadiance(const LightSample& s) const = 0;
-    // Whether this light has a stand-in at all (an area light has one on some shapes only).
-    virtual bool hasStandIn() const { return true; }
 };
 
 // The stand-ins of a scene's lights, found once (when an estimator is prepared), by light index.
 class LightStandIns {
   public:
     explicit LightStandIns(std::span<const Light* const> lights) {
-        for (const Light* light : lights) {
-            const auto* standIn = dynamic_cast<const LightStandIn*>(light);
-            byIndex_.push_back(standIn && standIn->hasStandIn() ? standIn : nullptr);
-        }
+        for (const Light* light : lights)
+            byIndex_.push_back(dynamic_cast<const LightStandIn*>(light));
     }
     LightStandIns() = default;
 

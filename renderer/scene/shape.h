@@ -44,10 +44,6 @@ class Shape {
     virtual bool sampleDirection(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const;
     // The default's sampling: uniform by area, the density converted to solid angle.
     bool sampleDirectionByArea(const Vec3& reference, Vec2 u, float time, ShapeSample* out) const;
-    // Whether sampleDirection costs much more than sampleDirectionByArea (a polygon sampled by
-    // solid angle): a light on the shape then offers area sampling as its stand-in
-    // (scene/light_stand_in.h).
-    virtual bool samplesDirectionsExpensively() const { return false; }
     // Solid-angle density with which sampleDirection would produce `hit` from `reference`.
     virtual float directionPdf(const Vec3& reference, const SurfaceHit& hit) const;
     // The inverse of sampleDirection: the u for which sampleDirection(reference, u, …) yields

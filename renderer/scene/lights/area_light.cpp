@@ -7,19 +7,7 @@ namespace rr {
 bool AreaLight::sample(const LightReference& reference, Vec2 u, float time,
                        LightSample* out) const {
     ShapeSample s;
-    return shape_->sampleDirection(reference.point, u, time, &s) &&
-           fromShapeSample(reference, s, out);
-}
-
-bool AreaLight::sampleStandIn(const LightReference& reference, Vec2 u, float time,
-                              LightSample* out) const {
-    ShapeSample s;
-    return shape_->sampleDirectionByArea(reference.point, u, time, &s) &&
-           fromShapeSample(reference, s, out);
-}
-
-bool AreaLight::fromShapeSample(const LightReference& reference, const ShapeSample& s,
-                                LightSample* out) const {
+    if (!shape_->sampleDirection(reference.point, u, time, &s)) return false;
     const Vec3 d = s.position - reference.point;
     const float dist = length(d);
     if (dist == 0) return false;

@@ -3,25 +3,17 @@
 
 #include "scene/invertible_light.h"
 #include "scene/light.h"
-#include "scene/light_stand_in.h"
 #include "scene/shape.h"
 
 namespace rr {
 
-class AreaLight final : public Light, public InvertibleLight, public LightStandIn {
+class AreaLight final : public Light, public InvertibleLight {
   public:
     AreaLight(const Shape* shape, const Rgb& radiance, bool twoSided)
         : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
 
     bool sample(const LightReference& reference, Vec2 u, float time,
                 LightSample* out) const override;
-    // The stand-in, on shapes whose own sampling is expensive: uniform by area, its density
-    // converted to solid angle (a worse density than a polygon's solid-angle one, which
-    // resampling's weights correct), with the exact radiance.
-    bool hasStandIn() const override { return shape_->samplesDirectionsExpensively(); }
-    bool sampleStandIn(const LightReference& reference, Vec2 u, float time,
-                       LightSample* out) const override;
-    Rgb exactRadiance(const LightSample& s) const override { return s.radiance; }
     float pdf(const Vec3& reference, const SurfaceHit& hit) const override;
     // The shape's inverse (Shape::invertSampleDirection); `direction` is not needed: a point of
     // the shape determines u. Given for any point of the shape, also one that does not emit
@@ -38,10 +30,6 @@ class AreaLight final : public Light, public InvertibleLight, public LightStandI
     }
 
   private:
-    // A sample from the shape's point `s`.
-    bool fromShapeSample(const LightReference& reference, const ShapeSample& s,
-                         LightSample* out) const;
-
     const Shape* shape_;
     Rgb radiance_;
     bool twoSided_;

@@ -53,12 +53,6 @@ class Polygon final : public Shape {
     bool sampleDirection(const Vec3& reference, Vec2 u, float time,
                          ShapeSample* out) const override;
     float directionPdf(const Vec3& reference, const SurfaceHit& hit) const override;
-    // Arvo's sampler costs several times area sampling (about 3 inverse trigonometric
-    // functions per fan triangle, and one of each direction's sine and cosine).
-    bool samplesDirectionsExpensively() const override {
-        return sampling_ == PolygonSampling::SolidAngle;
-    }
-
     const Vec3& normal() const { return normal_; }
     // The solid angle the polygon (displaced by `offset`) subtends at `reference`.
     double solidAngle(const Vec3& reference, const Vec3& offset = Vec3(0.0f)) const;

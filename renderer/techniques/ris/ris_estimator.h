@@ -11,8 +11,7 @@
 //    integrand (G's other factors are in p's change of measure); f adds visibility.
 //  - source `light_proxy`: the same, but candidates come from each light's cheaper stand-in
 //    (scene/light_stand_in.h: an environment map draws blocks of texels and ĝ uses the block's
-//    mean radiance; a polygon is sampled by area); the chosen sample is finished with the
-//    light's exact radiance. p is still
+//    mean radiance); the chosen sample is finished with the light's exact radiance. p is still
 //    exact, ĝ only approximates, which eq. (1) allows. A light without a stand-in gives its
 //    own samples, as under `light`.
 //  - sources `uniform_hemisphere`, `cosine_hemisphere` (about the shading normal) and `bsdf`
