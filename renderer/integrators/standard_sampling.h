@@ -108,10 +108,9 @@ class StandardSamplingWith {
     void sampleLights(uint32_t vertex, std::span<const uint32_t> repeats, uint32_t count,
                       const LightStandIns* standIns, const LightReference& reference, float time,
                       LightDraw* out) {
-        constexpr size_t kChunk = 16;
-        for (size_t start = 0; start < repeats.size(); start += kChunk)
+        for (size_t start = 0; start < repeats.size(); start += kLightChunk)
             sampleLightChunk(vertex,
-                             repeats.subspan(start, std::min(kChunk, repeats.size() - start)),
+                             repeats.subspan(start, std::min(kLightChunk, repeats.size() - start)),
                              count, standIns, reference, time, out + start);
     }
     // A light sample's contribution (already weighted and scaled by the path) at `vertex`.
@@ -152,14 +151,15 @@ class StandardSamplingWith {
     const Scene& scene() const { return scene_; }
 
   private:
-    // sampleLights() for at most 16 draws.
+    static constexpr size_t kLightChunk = 16;
+    // sampleLights() for at most kLightChunk draws.
     void sampleLightChunk(uint32_t vertex, std::span<const uint32_t> repeats, uint32_t count,
                           const LightStandIns* standIns, const LightReference& reference,
                           float time, LightDraw* out) {
         const uint32_t n = uint32_t(repeats.size());
-        std::array<float, 16> selectPmf;
-        std::array<Vec2, 16> u;
-        std::array<bool, 16> done{};
+        std::array<float, kLightChunk> selectPmf;
+        std::array<Vec2, kLightChunk> u;
+        std::array<bool, kLightChunk> done{};
         for (uint32_t i = 0; i < n; ++i) {
             const uint32_t repeat = repeats[i];
             out[i].light = selection_.select(
@@ -170,10 +170,10 @@ class StandardSamplingWith {
             done[i] = !out[i].light;
         }
         // Each light's draws in one call, in the order of their first draw.
-        std::array<Vec2, 16> us;
-        std::array<LightSample, 16> samples;
-        std::array<bool, 16> drawn;
-        std::array<uint32_t, 16> which;
+        std::array<Vec2, kLightChunk> us;
+        std::array<LightSample, kLightChunk> samples;
+        std::array<bool, kLightChunk> drawn;
+        std::array<uint32_t, kLightChunk> which;
         for (uint32_t i = 0; i < n; ++i) {
             if (done[i]) continue;
             const Light& light = *out[i].light;
