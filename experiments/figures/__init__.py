@@ -6,12 +6,12 @@ from pathlib import Path
 from harness.errors import SceneRejected
 
 from . import (pmc_fig04_buddha, pmc_fig05_caustic, pmc_fig07_alpha_maps, pmc_fig08_plant,
-               ris_fig01_resampling, ris_fig03_m_over_n, tais_gain_vs_size, tais_map_sizes,
-               twostage_fig12_time)
+               ris_fig01_resampling, ris_fig03_m_over_n, ris_fig04_variance_model,
+               tais_gain_vs_size, tais_map_sizes, twostage_fig12_time)
 
 FIGURES = [pmc_fig04_buddha, pmc_fig05_caustic, pmc_fig07_alpha_maps, pmc_fig08_plant,
-           ris_fig01_resampling, ris_fig03_m_over_n, tais_gain_vs_size, tais_map_sizes,
-           twostage_fig12_time]
+           ris_fig01_resampling, ris_fig03_m_over_n, ris_fig04_variance_model,
+           tais_gain_vs_size, tais_map_sizes, twostage_fig12_time]
 
 
 def write_all(profile_name: str) -> list[Path]:
