@@ -1,6 +1,6 @@
 """RIS fig. 4 with the map: the most resampling could gain on our scene, from the results of
-configs/experiments/ris/fig04_m_sweep.json (light sampling at N = 5 and 20, RIS at fixed M = 2
-… 64 with N = 20, equal primary rays).
+configs/experiments/ris/fig04_m_sweep.json (light sampling at N = 5 and 20, RIS at M = 4 with
+N = 5 and at M = 2 … 64 with N = 20, equal primary rays).
 
 The model is the paper's eq. (2), summed over the image: N light samples of M candidates at each
 of `spp` primary rays give an image MSE of
@@ -10,17 +10,24 @@ of `spp` primary rays give an image MSE of
 with A = Σ(e3 − e2), B = Σ(e2 − e1) over pixels and C the variance of the primary rays
 themselves (the pixel's area, what N does not average). The renders' times give the costs:
 
-    render time = S + spp · pixels · (T_0 + N (M T_X + T_Y)).
+    render time = S + spp · pixels · (T_0 + N (M T_X + T_Y))   (RIS)
+                = S + spp · pixels · (T_0 + N t_L)             (light sampling),
+
+where t_L = T_X + T_L: light sampling draws the same light samples, but traces no shadow ray
+for a sample below the horizon, which RIS with M ≥ 2 almost never keeps (T_L < T_Y).
 
 At a fixed number of primary rays (the paper's setting, and robust RIS's), RIS may spend on each
-the time of 20 light samples, 20 (T_X + T_Y): N(M) = 20 (T_X + T_Y)/(M T_X + T_Y). The largest
-equal-time gain over light sampling that any M could reach is then
+the time of 20 light samples: N(M) = 20 (T_X + T_L)/(M T_X + T_Y), at least 1 (T_L in place of
+T_Y at M = 1, which is light sampling itself, and in between for a fractional M < 2). The equal-time
+gain over light sampling at M candidates is
 
-    max over M ≥ 1 of (C + (A + B)/20) / (C + (A/M + B)/N(M)),
+    (C + (A + B)/20) / (C + (A/M + B)/N(M)),
 
-a function of r = T_Y/T_X alone; r → ∞ (free candidates) gives its ceiling, the gain at equal
-samples and M → ∞. Fitted by weighted least squares (each mean weighted by its standard error
-over seeds), with 95 % intervals from resampling the seeds. Writes the plot and
+robust RIS's at M = T_Y/T_X (eq. 4), the best at the best M. Both are given at the measured
+costs and as functions of T_X (T_Y and T_L held: a cheaper candidate makes light sampling's
+draws cheaper too); T_X → 0 (free candidates) gives the ceiling, the gain at equal samples and
+M → ∞. Fitted by weighted least squares (each mean weighted by its standard error over seeds),
+with 95 % intervals from resampling the seeds. Writes the plot and
 results/tables/ris_variance_model<suffix>.md; nothing when the experiment has not been run."""
 import json
 from dataclasses import dataclass
@@ -47,46 +54,46 @@ class Fit:
     b: float  # Σ (e2 − e1): what they cannot (ĝ is not f: visibility)
     c: float  # the primary rays' own variance
     t0: float  # seconds per primary ray besides its light samples
-    tx: float  # seconds per candidate
-    ty: float  # seconds per finished sample (its shadow ray)
+    tx: float  # T_X: seconds per candidate
+    ty: float  # T_Y: seconds per RIS sample besides its candidates (its shadow ray)
+    tl: float  # T_L: seconds per light-sampling sample besides its draw
 
-    def gain(self, m: np.ndarray, r: float) -> np.ndarray:
+    def gain(self, m: np.ndarray, tx: float) -> np.ndarray:
         """Equal-time gain of M candidates over light sampling at the same primary rays, for
-        T_Y/T_X = r (N from the time of BASE_N light samples, at least 1)."""
-        n = np.maximum(1.0, BASE_N * (1 + r) / (m + r))
+        candidates of cost `tx`."""
+        # M = 1 is light sampling itself (the same draws and rays); a fractional M between 1
+        # and 2 is rounded randomly per point, so its shadow rays interpolate.
+        finish = self.tl + (self.ty - self.tl) * np.clip(m - 1, 0, 1)
+        n = np.maximum(1.0, BASE_N * (tx + self.tl) / (m * tx + finish))
         return (self.c + (self.a + self.b) / BASE_N) / (self.c + (self.a / m + self.b) / n)
 
-    def best_gain(self, r: float) -> tuple[float, float]:
+    def best_gain(self, tx: float) -> tuple[float, float]:
         """The largest gain over M (and the M that reaches it)."""
         m = np.geomspace(1, 1e5, 4001)
-        g = self.gain(m, r)
+        g = self.gain(m, tx)
         return float(g.max()), float(m[g.argmax()])
 
-    def robust_gain(self, r: float) -> float:
+    def robust_gain(self, tx: float) -> float:
         """The gain of robust RIS (eq. 4: M = T_Y/T_X, at least 1)."""
-        return float(self.gain(np.array([max(1.0, r)]), r)[0])
-
-    def robust_ratio_for(self, gain: float) -> float:
-        """The smallest T_Y/T_X at which robust RIS reaches `gain` (inf: never)."""
-        return self._smallest_ratio(self.robust_gain, gain)
+        return float(self.gain(np.array([max(1.0, self.ty / tx)]), tx)[0])
 
     def ceiling(self) -> float:
         """Free candidates: equal samples, M → ∞."""
         return (self.c + (self.a + self.b) / BASE_N) / (self.c + self.b / BASE_N)
 
-    def ratio_for(self, gain: float) -> float:
-        """The smallest T_Y/T_X at which the best M reaches `gain` (inf: never)."""
-        return self._smallest_ratio(lambda r: self.best_gain(r)[0], gain)
-
-    def _smallest_ratio(self, gain_at, gain: float) -> float:
-        """Bisection in log r; both gains grow with r towards the ceiling."""
+    def cost_for(self, gain_at, gain: float) -> float:
+        """The largest T_X at which gain_at(T_X) reaches `gain` (0: never); both gains fall as
+        T_X grows. Bisection in log T_X."""
         if self.ceiling() <= gain:
-            return float("inf")
-        lo, hi = 1e-3, 1e6
+            return 0.0
+        lo, hi = 1e-13, 1e-5
         for _ in range(100):
             mid = np.sqrt(lo * hi)
-            lo, hi = (mid, hi) if gain_at(mid) < gain else (lo, mid)
-        return float(hi)
+            lo, hi = (mid, hi) if gain_at(mid) >= gain else (lo, mid)
+        return float(lo)
+
+
+LIGHT = ("light", "light_n5")  # the light-sampling techniques of the sweep
 
 
 def _counts(integrator: dict) -> tuple[float, float]:
@@ -109,13 +116,17 @@ def _fit(runs: list[records.RunRecord], counts: dict[str, tuple[float, float]],
         weight.append(1 / max(err, 1e-30))
     x, y, w = np.array(rows), np.array(mse), np.array(weight)
     c, a, b = np.linalg.lstsq(x * w[:, None], y * w, rcond=None)[0]
-    # Times: S + spp·pixels·(T_0 + N M T_X + N T_Y), over every run.
-    design = np.array([[1.0, r.spp * pixels, r.spp * pixels * counts[r.technique][0]
-                        * counts[r.technique][1], r.spp * pixels * counts[r.technique][1]]
-                       for r in runs])
-    times = np.array([r.time for r in runs])
-    _, t0, tx, ty = np.linalg.lstsq(design, times, rcond=None)[0]
-    return Fit(float(a), float(b), float(c), float(t0), float(tx), float(ty))
+    # Times: S + spp·pixels·(T_0 + N (M T_X + T_Y)), or (T_0 + N t_L) for light sampling.
+    design, times = [], []
+    for r in runs:
+        m, n = counts[r.technique]
+        rays = r.spp * pixels
+        light = r.technique in LIGHT
+        design.append([1.0, rays, 0 if light else rays * n * m, 0 if light else rays * n,
+                       rays * n if light else 0])
+        times.append(r.time)
+    _, t0, tx, ty, tl = np.linalg.lstsq(np.array(design), np.array(times), rcond=None)[0]
+    return Fit(float(a), float(b), float(c), float(t0), float(tx), float(ty), float(tl - tx))
 
 
 def _resampled(runs: list[records.RunRecord], counts, pixels: int, rng) -> Fit:
@@ -133,24 +144,27 @@ def _interval(values: list[float]) -> tuple[float, float]:
 
 
 def _quantities(fit: Fit) -> dict[str, float]:
-    r = fit.ty / fit.tx
+    half = fit.ty / 2  # T_Y/T_X = 2: issue 40's first criterion
+    robust_tx = fit.cost_for(fit.robust_gain, TARGET_GAIN)
     return {
         "A/B": fit.a / fit.b,
-        "ceiling": fit.ceiling(),
+        "ceiling (free candidates)": fit.ceiling(),
         "T_X (ns)": fit.tx * 1e9,
         "T_Y (ns)": fit.ty * 1e9,
+        "T_L (ns)": fit.tl * 1e9,
         "T_0 (ns)": fit.t0 * 1e9,
-        "T_Y/T_X": r,
-        "best gain at T_Y/T_X": fit.best_gain(r)[0],
-        "best M at T_Y/T_X": fit.best_gain(r)[1],
-        "robust gain at T_Y/T_X": fit.robust_gain(r),
-        "robust gain at T_Y/T_X = 2": fit.robust_gain(2.0),
-        f"T_Y/T_X for robust x{TARGET_GAIN}": fit.robust_ratio_for(TARGET_GAIN),
-        "best gain at T_Y/T_X = 2": fit.best_gain(2.0)[0],
-        "best gain at T_Y/T_X = 4": fit.best_gain(4.0)[0],
-        f"T_Y/T_X for x{TARGET_GAIN}": fit.ratio_for(TARGET_GAIN),
-        f"T_X (ns) for x{TARGET_GAIN}": fit.ty / fit.ratio_for(TARGET_GAIN) * 1e9,
-        f"T_Y/T_X for x{PAPER_GAIN / 1.25:.2f}": fit.ratio_for(PAPER_GAIN / 1.25),
+        "T_Y/T_X": fit.ty / fit.tx,
+        "robust RIS: gain": fit.robust_gain(fit.tx),
+        "best M: gain": fit.best_gain(fit.tx)[0],
+        "best M": fit.best_gain(fit.tx)[1],
+        "robust RIS: gain at T_Y/T_X = 2": fit.robust_gain(half),
+        "best M: gain at T_Y/T_X = 2": fit.best_gain(half)[0],
+        f"robust RIS: T_X (ns) for x{TARGET_GAIN}": robust_tx * 1e9,
+        f"robust RIS: T_Y/T_X for x{TARGET_GAIN}": fit.ty / robust_tx if robust_tx else np.inf,
+        f"best M: T_X (ns) for x{TARGET_GAIN}":
+            fit.cost_for(lambda tx: fit.best_gain(tx)[0], TARGET_GAIN) * 1e9,
+        f"best M: T_X (ns) for x{PAPER_GAIN / 1.25:.2f}":
+            fit.cost_for(lambda tx: fit.best_gain(tx)[0], PAPER_GAIN / 1.25) * 1e9,
     }
 
 
@@ -205,18 +219,22 @@ def write(profile_name: str) -> list[Path]:
     by_m.set_xlabel(f"candidates per sample M (N = {BASE_N})")
     by_m.set_ylabel("MSE × spp")
     by_m.set_title("equal samples: eq. (2) fitted (blue: 20 spp, orange: 4 spp)")
-    rs = np.geomspace(0.1, 100, 120)
-    by_cost.plot(rs, [fit.best_gain(r)[0] for r in rs], "C0-", label="best M, equal time")
-    lo = [np.percentile([f.best_gain(r)[0] for f in resampled[:200]], 2.5) for r in rs[::6]]
-    hi = [np.percentile([f.best_gain(r)[0] for f in resampled[:200]], 97.5) for r in rs[::6]]
-    by_cost.fill_between(rs[::6], lo, hi, color="C0", alpha=0.2, label="95 % (seeds resampled)")
-    by_cost.plot(rs, [fit.robust_gain(r) for r in rs], "C1-", label="robust M = T_Y/T_X (eq. 4)")
+    txs = np.geomspace(1e-9, 400e-9, 120)
+    ns = txs * 1e9
+    by_cost.plot(ns, [fit.best_gain(tx)[0] for tx in txs], "C0-", label="best M")
+    few = resampled[:200]
+    by_cost.fill_between(ns[::6], *[[np.percentile([f.best_gain(tx)[0] for f in few], q)
+                                     for tx in txs[::6]] for q in (2.5, 97.5)],
+                         color="C0", alpha=0.2, label="95 % (seeds resampled)")
+    by_cost.plot(ns, [fit.robust_gain(tx) for tx in txs], "C1-",
+                 label="robust RIS, M = T_Y/T_X (eq. 4)")
     by_cost.axhline(fit.ceiling(), color="k", ls=":", lw=1, label="ceiling: free candidates")
     by_cost.axhline(TARGET_GAIN, color="C3", ls="--", lw=1, label=f"x{TARGET_GAIN}")
-    by_cost.axvline(fit.ty / fit.tx, color="C2", lw=1,
-                    label=f"measured here: T_Y/T_X = {fit.ty / fit.tx:.2f}")
+    by_cost.axvline(fit.tx * 1e9, color="C2", lw=1,
+                    label=f"measured: T_X = {fit.tx * 1e9:.0f} ns, T_Y = {fit.ty * 1e9:.0f} ns")
+    by_cost.axvline(fit.ty / 2 * 1e9, color="C2", ls="--", lw=1, label="T_Y/T_X = 2")
     by_cost.set_xscale("log")
-    by_cost.set_xlabel("T_Y / T_X")
+    by_cost.set_xlabel("T_X, ns per candidate (T_Y and T_L as measured)")
     by_cost.set_ylabel("MSE gain over light sampling")
     by_cost.set_title("the equal-time gain: the best M, and robust RIS's")
     for ax in (by_m, by_cost):
