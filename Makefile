@@ -45,7 +45,7 @@ CLUSTER_PACKAGES := slurm-wlm munge
 
 .PHONY: deps configure build run render test asan fuzz stress bench embree-floor rr-study assets \
         references experiments \
-        tables plots reproduce previews fresh-check cluster-test format clean
+        tables plots check-results reproduce previews fresh-check cluster-test format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -96,6 +96,12 @@ tables: deps
 
 plots: deps
 	$(HARNESS) plots
+
+# Lists every results file of the profile that HEAD's renderer would not regenerate: each
+# technique's seed-0 render at the smallest budget, re-rendered and compared by pixel hash
+# (experiments/harness/fingerprints.py). Part of `make test` for the quick profile.
+check-results: build
+	$(HARNESS) check-results $(ONLY_CONFIGS)
 
 # References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
 reproduce: build

@@ -8,6 +8,8 @@
   run.py tables                                  results -> results/tables/<paper>.{md,csv,tex}
   run.py plots                                   results -> results/plots/<paper>/*.png
   run.py check      [CONFIG ...]                 CI: fail when an error exceeds its threshold
+  run.py check-results [CONFIG ...]              list results that HEAD's renderer would not
+                                                 regenerate (their fingerprints differ)
   run.py calibrate  CONFIG [--spp N ...]         propose thresholds from the results file
   run.py reproduce                               references, run, tables and plots
   run.py overhead                                each experiment's time outside render loops
@@ -32,8 +34,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from harness import (config, experiment, jobs, paths, references,  # noqa: E402
-                     renders, thresholds, workflow)
+from harness import (config, experiment, fingerprints, jobs, paths,  # noqa: E402
+                     references, renders, tables, thresholds, workflow)
 from harness.config import Experiment  # noqa: E402
 from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
@@ -107,7 +109,6 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_tables(args: argparse.Namespace) -> int:
-    from harness import tables
     for out in tables.write_all(args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
@@ -133,6 +134,40 @@ def cmd_check(args: argparse.Namespace) -> int:
     if failed:
         print(f"{failed} threshold(s) failed", file=sys.stderr)
     return 1 if failed else 0
+
+
+def stale_reasons(exp: Experiment, profile_name: str, workers: int) -> list[str]:
+    """Why the experiment's results file is not what HEAD would write (fixed-spp numbers):
+    absent, made by another config, or a fingerprint render whose pixels differ."""
+    results_file = exp.results_file(profile_name)
+    if not results_file.exists():
+        return ["no results file"]
+    doc = json.loads(results_file.read_text())
+    if tables.config_changed(doc):
+        return ["its config has changed"]
+    recorded = [fingerprints.Fingerprint.from_json(f) for f in doc.get("fingerprints", [])]
+    return fingerprints.stale(exp, exp.profiles[profile_name], recorded, workers)
+
+
+def cmd_check_results(args: argparse.Namespace) -> int:
+    stale = 0
+    for exp in load_configs(args.configs):
+        try:
+            reasons = stale_reasons(exp, args.profile, args.jobs)
+        except SceneRejected as e:
+            if not e.skippable:
+                raise
+            report_skipped(exp.file, e)
+            continue
+        if reasons:
+            stale += 1
+            print(f"[{exp.id}] STALE: " + "; ".join(reasons), flush=True)
+        else:
+            print(f"[{exp.id}] current", flush=True)
+    if stale:
+        print(f"{stale} {args.profile}-profile results file(s) stale: run them again "
+              "(`make run ONLY=...`)", file=sys.stderr)
+    return 1 if stale else 0
 
 
 def cmd_overhead(args: argparse.Namespace) -> int:
@@ -226,6 +261,7 @@ def parser() -> argparse.ArgumentParser:
     on_configs("references", cmd_references, force=True)
     on_configs("run", cmd_run)
     on_configs("check", cmd_check)
+    on_configs("check-results", cmd_check_results)
     on_configs("reproduce", cmd_reproduce, force=True)
     sub.add_parser("tables").set_defaults(func=cmd_tables)
     sub.add_parser("plots").set_defaults(func=cmd_plots)

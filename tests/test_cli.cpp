@@ -220,6 +220,30 @@ TEST(Cli, CheckJsonSaysValidInvalidOrMissingAsset) {
     EXPECT_EQ(absent.at("pointer"), "/shapes/0/file");
 }
 
+// `check --json` says which keys make a render reproducible (the harness's fingerprints): none
+// for an integrator whose choices measure nothing, given costs for RIS's robust M and N.
+TEST(Cli, CheckJsonPinsWhatATechniqueMeasures) {
+    const fs::path dir = scratchDirectory();
+    const ProcessResult plain = runProcess(RENDERER_BINARY, {"check", kScene, "--json"}, dir);
+    ASSERT_EQ(plain.status, 0) << plain.errors;
+    EXPECT_EQ(nlohmann::json::parse(plain.out).at("pinned"), nlohmann::json::object());
+
+    const std::string robust = R"(/integrator={"type":"ris","mode":"robust","budget":4})";
+    const ProcessResult timed =
+        runProcess(RENDERER_BINARY, {"check", kScene, "--json", "--set", robust}, dir);
+    ASSERT_EQ(timed.status, 0) << timed.errors;
+    const nlohmann::json pinned = nlohmann::json::parse(timed.out).at("pinned");
+    EXPECT_GT(pinned.at("costs").at("t_x_ns").get<double>(), 0);
+    EXPECT_GT(pinned.at("costs").at("t_y_ns").get<double>(), 0);
+
+    const std::string given =
+        R"(/integrator={"type":"ris","mode":"robust","budget":4,"costs":{"t_x_ns":40,"t_y_ns":300}})";
+    const ProcessResult fixed =
+        runProcess(RENDERER_BINARY, {"check", kScene, "--json", "--set", given}, dir);
+    ASSERT_EQ(fixed.status, 0) << fixed.errors;
+    EXPECT_EQ(nlohmann::json::parse(fixed.out).at("pinned"), nlohmann::json::object());
+}
+
 TEST(Cli, UnwritableOutputIsRejectedBeforeRendering) {
     const fs::path dir = scratchDirectory();
     fs::create_directories(dir / "taken.exr");

@@ -21,7 +21,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from . import config, jobs, paths, provenance, references, render_server, renders, stats
+from . import (config, fingerprints, jobs, paths, provenance, references, render_server, renders,
+               stats)
 from .config import Experiment, Profile
 from .errors import HarnessFailure
 from .records import (SPP, TIME, MatchedBudget, OriginalBudget, Run, RunRecord, SummaryEntry,
@@ -333,6 +334,8 @@ def results_document(exp: Experiment, profile: Profile, records: list[RunRecord]
             "command": " ".join(sys.argv),
             **({"hosts": engine["hosts"]} if "hosts" in engine else {}),
         },
+        "fingerprints": [to_json(f) for f in fingerprints.record(exp, profile, records,
+                                                                  engine["parallel_jobs"])],
         "summary": [to_json(s) for s in summarise(exp, records)],
         "slopes": fitted,
         "runs": [to_json(r) for r in records],

@@ -246,18 +246,15 @@ def ensure(experiments: list[Experiment], profile_name: str, force: bool = False
         render_server.close_all()
 
 
-def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any], smallest_rmse: float,
-                record: bool = True) -> float:
-    """Refuses a too-noisy reference; with record, writes the ratio into the manifest."""
+def check_noise(exp: Experiment, profile: Profile, entry: dict[str, Any],
+                smallest_rmse: float) -> float:
+    """Refuses a too-noisy reference; returns the ratio of its noise to the smallest error (the
+    results file records it: the manifest does not, since equal-time errors move run to run
+    and a run must not rewrite a tracked file for that)."""
     if smallest_rmse <= 0:
         raise HarnessFailure(f"{exp.id}: a render matches the reference exactly (RMSE 0), so "
                              "the reference's noise cannot be judged against it")
     ratio = entry["noise_rmse"] / smallest_rmse
-    if record:
-        check = {"smallest_rmse_compared": smallest_rmse, "noise_ratio": ratio,
-                 "max_ratio": MAX_NOISE_RATIO}
-        update_manifest_entry(entry_name(exp, profile),
-                              lambda current: {**current, "noise_check": check})
     if ratio >= MAX_NOISE_RATIO:
         raise HarnessFailure(
             f"{exp.id}: the {profile.name} reference's noise (RMSE {entry['noise_rmse']:.3g}) is "

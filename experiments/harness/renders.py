@@ -26,6 +26,9 @@ class SceneCheck:
     # of its estimand: the document without the settings that change only how the image is
     # estimated (description, spp, seed, sampler, light selection, roulette, light sampling)
     estimand_sha256: str
+    # integrator keys that make a render reproducible where its choices follow what it
+    # measures (fingerprints.py); {}: reproducible as configured
+    pinned: dict[str, Any]
 
 
 @dataclass(frozen=True)
@@ -61,7 +64,8 @@ def check(args: Sequence[object]) -> SceneCheck:
         raise SceneRejected(paths.relative(args[0]), answer["error"], answer["pointer"],
                             answer["message"])
     return SceneCheck(answer["integrator"], tuple(answer["resolution"]), answer["spp"],
-                      answer["features"], answer["sceneSha256"], answer["estimandSha256"])
+                      answer["features"], answer["sceneSha256"], answer["estimandSha256"],
+                      answer["pinned"])
 
 
 def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:

@@ -64,7 +64,7 @@ def run_check(exp: Experiment, workers: int) -> list[Verdict]:
     with tempfile.TemporaryDirectory() as scratch:
         runs = experiment.expand(exp, profile, only=needed)
         rendered = experiment.execute(exp, profile, runs, Path(scratch), reference_file, workers)
-    references.check_noise(exp, profile, entry, experiment.smallest_rmse(rendered), record=False)
+    references.check_noise(exp, profile, entry, experiment.smallest_rmse(rendered))
     return evaluate(exp, experiment.summarise(exp, rendered))
 
 

@@ -246,7 +246,8 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
                              {"spp", settings.spp},
                              {"features", features},
                              {"sceneSha256", sceneSha},
-                             {"estimandSha256", estimandSha}};
+                             {"estimandSha256", estimandSha},
+                             {"pinned", p.loaded.integrator->pinnedSettings()}};
         std::printf("%s\n", result.dump().c_str());
     } else {
         std::printf(

@@ -71,6 +71,11 @@ class Integrator {
     // adapts to the scene's contents resolves its choices here (and throws ConfigError for a
     // choice the scene cannot support).
     virtual void prepare(const Scene& /*scene*/) {}
+    // Values for keys of its JSON object that make a render depend only on the scene, seed and
+    // spp, for an integrator whose choices follow what it measures (RIS's pilot times its
+    // candidates): a render's fingerprint (`renderer check --json`, "pinned") sets them. Empty
+    // when the render is reproducible as configured.
+    virtual nlohmann::json pinnedSettings() const { return nlohmann::json::object(); }
     // Channels besides radiance, once the render is done.
     virtual std::vector<AuxiliaryChannel> auxiliaryChannels() const { return {}; }
     // Whether the image is pixelEstimates(), formed from the integrator's own record of its

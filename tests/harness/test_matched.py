@@ -13,7 +13,8 @@ from pathlib import Path
 from unittest import mock
 
 from fixtures import load_config, summary_entry, tiny_matched, valid
-from harness import experiment, jobs, paths, references, stats, tables, thresholds
+from harness import (experiment, fingerprints, jobs, paths, references, stats, tables,
+                     thresholds)
 from harness.errors import HarnessFailure
 from harness.records import (MatchedBudget, OriginalBudget, Run, RunRecord, TechniqueBudget,
                              index_by_key, read_matched, read_runs, read_summary, to_json)
@@ -269,6 +270,26 @@ class MatchedRunTest(unittest.TestCase):
     def select(self, technique, kind, budget, copies=False):
         return [r for r in self.runs if (r["technique"], r["kind"], r["budget"])
                 == (technique, kind, budget) and ("duplicate_of" in r) == copies]
+
+    def test_fingerprints_hash_each_techniques_seed_0_at_the_smallest_budget(self):
+        prints = [fingerprints.Fingerprint.from_json(f) for f in self.doc["fingerprints"]]
+        self.assertEqual([(f.technique, f.spp, f.seed, f.pinned) for f in prints],
+                         [("path", 2, 0, {}), ("path_mis", 2, 0, {})])
+        for f in prints:
+            (run,) = [r for r in self.select(f.technique, "spp", 2) if r["seed"] == 0]
+            self.assertEqual(f.pixels_sha256, fingerprints.pixels_sha256(paths.output(run["file"])))
+
+    def test_the_fingerprints_find_a_render_that_changed_and_only_that(self):
+        prints = [fingerprints.Fingerprint.from_json(f) for f in self.doc["fingerprints"]]
+        profile = self.exp.profiles["quick"]
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            self.assertEqual(fingerprints.stale(self.exp, profile, prints, 2), [])
+            # The same hash claimed for another budget: the re-render's pixels differ.
+            moved = [prints[0], dataclasses.replace(prints[1], spp=8)]
+            self.assertEqual(fingerprints.stale(self.exp, profile, moved, 2),
+                             ["path_mis at 8 spp, seed 0: pixels differ"])
+            self.assertEqual(fingerprints.stale(self.exp, profile, [], 2),
+                             ["the results have no fingerprint"])
 
     def test_matched_time_is_the_fixed_techniques_mean_render_time(self):
         times = [r["time"] for r in self.select("path_mis", "spp", 8)]

@@ -33,6 +33,12 @@ nlohmann::json RisIntegrator::parameters() const {
     return p;
 }
 
+nlohmann::json RisIntegrator::pinnedSettings() const {
+    if (!needsCostPilot()) return nlohmann::json::object();
+    // A candidate a quarter of a shadow ray: robust M = 4, so that resampling is exercised.
+    return {{"costs", {{"t_x_ns", 50.0}, {"t_y_ns", 200.0}}}};
+}
+
 template <class Use>
 Rgb RisIntegrator::atFirstHit(const Scene& scene, int x, int y, const PixelSample& sample,
                               RayCounters& rays, const Use& use) const {

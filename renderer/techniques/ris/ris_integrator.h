@@ -46,6 +46,8 @@ class RisIntegrator final : public SampleIntegrator {
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;
     std::vector<AuxiliaryChannel> auxiliaryChannels() const override;
+    // Robust and optimal M and N follow the measured costs: pinned, given costs.
+    nlohmann::json pinnedSettings() const override;
     void prepare(const Scene& scene) override { estimator_.prepare(scene, "/integrator"); }
 
     std::unique_ptr<RenderSchedule> schedule(const ScheduleInputs& inputs);
