@@ -34,7 +34,7 @@ workflow = $(HARNESS) validate $(ONLY_CONFIGS) && \
 
 PACKAGES := g++ make cmake git pkg-config ca-certificates \
             python3 python3-numpy python3-scipy python3-matplotlib python3-openimageio \
-            python3-jsonschema python3-imath \
+            python3-jsonschema python3-imath mypy chromium nodejs \
             libembree-dev libtbb-dev \
             libopenexr-dev nlohmann-json3-dev libcli11-dev libassimp-dev libssl-dev \
             libboost-dev libgtest-dev libgmock-dev libstb-dev libpng-dev time snakemake
@@ -45,7 +45,7 @@ CLUSTER_PACKAGES := slurm-wlm munge
 
 .PHONY: deps configure build run render test asan fuzz stress bench embree-floor rr-study assets \
         references experiments \
-        tables plots check-results reproduce previews fresh-check cluster-test format clean
+        tables plots check-results report reproduce previews fresh-check cluster-test format clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -97,6 +97,22 @@ tables: deps
 plots: deps
 	$(HARNESS) plots
 
+# The results page's libraries and its browser test's driver (experiments/report/package.json,
+# pinned by its lock file). Debian's nodejs needs Debian's npm; a nodejs that bundles npm
+# conflicts with that package, so it is installed only where the command is missing.
+REPORT_MODULES := experiments/report/node_modules/.package-lock.json
+$(REPORT_MODULES): experiments/report/package.json experiments/report/package-lock.json | deps
+	@command -v npm >/dev/null || { echo "installing Debian's npm"; \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends npm >/dev/null; }
+	cd experiments/report && npm ci --no-audit --no-fund --loglevel=error
+	touch $@
+
+# The results page: results/report/index.html (open it from file://), every figure's numbers,
+# convergence plot and image comparison, from the committed results and references; renders
+# only the images that are not on disk (about 10 minutes after a fresh clone).
+report: build $(REPORT_MODULES)
+	$(HARNESS) report
+
 # Lists every results file of the profile that HEAD's renderer would not regenerate: each
 # technique's seed-0 render at the smallest budget, re-rendered and compared by pixel hash
 # (experiments/harness/fingerprints.py). Part of `make test` for the quick profile.
@@ -116,7 +132,7 @@ endif
 previews: build
 	BUILD=$(BUILD) $(PYTHON) experiments/previews.py
 
-test: build
+test: build $(REPORT_MODULES)
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 
 # Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer.

@@ -45,7 +45,7 @@ SCENE = paths.SCENES / "dragon_bench.json"
 THREADS = 2
 GOAL = 0.75
 # (label, environment of the patched binary)
-REPLAYS = [
+REPLAYS: list[tuple[str, dict[str, str]]] = [
     ("the renderer's Embree set-up (bvh8.triangle4, high quality)", {}),
     ("bvh8.triangle4i", {"RTC_CONFIG": "tri_accel=bvh8.triangle4i"}),
     ("bvh8.triangle4v", {"RTC_CONFIG": "tri_accel=bvh8.triangle4v"}),

@@ -8,14 +8,13 @@ pixels measures rare bright paths, not the bulk of the image; the TAIS analysis
     experiments/error_concentration.py results/tais/fig07_scatter_direction.json [--spp N]
 """
 import argparse
-import json
 import sys
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from harness import paths, records  # noqa: E402
+from harness import paths, records, results  # noqa: E402
 from harness.plots import read_rgb  # noqa: E402
 from harness.records import SPP, TechniqueBudget  # noqa: E402
 
@@ -38,18 +37,18 @@ def main() -> None:
     parser.add_argument("results")
     parser.add_argument("--spp", type=int, help="budget (default: the table's)")
     args = parser.parse_args()
-    doc = json.loads(Path(args.results).read_text())
-    spp = args.spp or doc["table"]["spp"]
-    reference = read_rgb(paths.output(doc["reference"]["file"]))
+    doc = results.read(Path(args.results))
+    spp = args.spp or doc.table.spp
+    reference = read_rgb(paths.output(doc.reference.file))
     keys = ["sigma_over_mu", "share_0.1%", "sigma_over_mu_without_0.1%", "share_1%",
             "sigma_over_mu_without_1%"]
-    print(f"{doc['experiment']} ({doc['profile']}), {spp} spp, mean over "
-          f"{len(doc['seeds'])} seeds\n")
+    print(f"{doc.experiment} ({doc.profile}), {spp} spp, mean over "
+          f"{len(doc.seeds)} seeds\n")
     print("| technique | σ/µ | worst 0.1 % share | σ/µ without them | worst 1 % share "
           "| σ/µ without them |")
     print("|---|---|---|---|---|---|")
-    runs = records.group_by_key(records.read_runs(doc))
-    for technique in doc["techniques"]:
+    runs = records.group_by_key(doc.runs)
+    for technique in doc.techniques:
         at_budget = runs.get(TechniqueBudget(technique, SPP, spp))
         if not at_budget:
             continue

@@ -62,7 +62,7 @@ def main():
     print("|---|---:|---:|---:|")
     with tempfile.TemporaryDirectory() as scratch:
         for row, config, technique, spp in FIGURES:
-            times = {args.before: [], current: []}
+            times: dict[str, list[float]] = {args.before: [], current: []}
             for _ in range(args.runs):
                 for binary in times:
                     times[binary].append(render_seconds(binary, config, technique, spp, scratch))

@@ -85,7 +85,7 @@ def interval(log_ratios: list[float]) -> tuple[float, float, float]:
 def measure() -> dict[str, dict[str, list[tuple[float, float]]]]:
     jobs = [(scene, rule, seed) for scene in SCENES for seed in range(SEEDS) for rule in RULES]
     results: dict[str, dict[str, list[tuple[float, float]]]] = {
-        scene: {rule: [None] * SEEDS for rule in RULES} for scene in SCENES}
+        scene: {rule: [(math.nan, math.nan)] * SEEDS for rule in RULES} for scene in SCENES}
     with tempfile.TemporaryDirectory() as scratch, \
             concurrent.futures.ThreadPoolExecutor(2) as pool:
         futures = {pool.submit(render, *job, Path(scratch)): job for job in jobs}
@@ -98,7 +98,7 @@ def measure() -> dict[str, dict[str, list[tuple[float, float]]]]:
 
 
 def table(results) -> tuple[str, dict]:
-    log_gain = {rule: {} for rule in RULES}
+    log_gain: dict[str, dict[str, list[float]]] = {rule: {} for rule in RULES}
     for scene in SCENES:
         base = results[scene][FORMER_RULE]
         for rule in RULES:

@@ -13,6 +13,7 @@
   run.py calibrate  CONFIG [--spp N ...]         propose thresholds from the results file
   run.py reproduce                               references, run, tables and plots
   run.py overhead                                each experiment's time outside render loops
+  run.py report [--only ID ...] [--out DIR]      the results page, results/report/index.html
 
 The units of work of the workflow engine (experiments/Snakefile; harness/workflow.py):
   run.py render-one      CONFIG --run T/B_seedN.exr  one render, its record beside it
@@ -26,7 +27,6 @@ CONFIG defaults to every configs/experiments/<paper>/<figure>.json. --profile qu
 input (one message naming the JSON pointer)."""
 import argparse
 import functools
-import json
 import os
 import sys
 from collections.abc import Callable
@@ -35,7 +35,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from harness import (config, experiment, fingerprints, jobs, paths,  # noqa: E402
-                     references, renders, tables, thresholds, workflow)
+                     references, renders, results, tables, thresholds, workflow)
 from harness.config import Experiment  # noqa: E402
 from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
@@ -142,11 +142,10 @@ def stale_reasons(exp: Experiment, profile_name: str, workers: int) -> list[str]
     results_file = exp.results_file(profile_name)
     if not results_file.exists():
         return ["no results file"]
-    doc = json.loads(results_file.read_text())
+    doc = results.read(results_file)
     if tables.config_changed(doc):
         return ["its config has changed"]
-    recorded = [fingerprints.Fingerprint.from_json(f) for f in doc.get("fingerprints", [])]
-    return fingerprints.stale(exp, exp.profiles[profile_name], recorded, workers)
+    return fingerprints.stale(exp, exp.profiles[profile_name], doc.fingerprints, workers)
 
 
 def cmd_check_results(args: argparse.Namespace) -> int:
@@ -170,6 +169,13 @@ def cmd_check_results(args: argparse.Namespace) -> int:
     return 1 if stale else 0
 
 
+def cmd_report(args: argparse.Namespace) -> int:
+    from harness import report
+    page = report.write(args.profile, args.jobs, args.only or None, args.out)
+    print(f"wrote {paths.relative(page)}: open it in a browser (file:// works)")
+    return 0
+
+
 def cmd_overhead(args: argparse.Namespace) -> int:
     from harness import overhead
     print(overhead.report(args.profile))
@@ -181,9 +187,9 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     results_file = exp.results_file(args.profile)
     if not results_file.exists():
         raise HarnessFailure(f"no results at {paths.relative(results_file)}: run it first")
-    results = json.loads(results_file.read_text())
-    spps = args.spp or [results["table"]["spp"], max(results["budgets"]["spp"])]
-    print(thresholds.format_block(thresholds.calibrate(exp, results, spps)))
+    doc = results.read(results_file)
+    spps = args.spp or [doc.table.spp or max(doc.budgets.spp), max(doc.budgets.spp)]
+    print(thresholds.format_block(thresholds.calibrate(exp, doc, spps)))
     return 0
 
 
@@ -266,6 +272,10 @@ def parser() -> argparse.ArgumentParser:
     sub.add_parser("tables").set_defaults(func=cmd_tables)
     sub.add_parser("plots").set_defaults(func=cmd_plots)
     sub.add_parser("overhead").set_defaults(func=cmd_overhead)
+    p = sub.add_parser("report")
+    p.add_argument("--only", nargs="*", help="experiment ids (<paper>/<figure>) to include")
+    p.add_argument("--out", type=Path, help="the page's folder (default results/report/)")
+    p.set_defaults(func=cmd_report)
     p = sub.add_parser("render-one")
     p.add_argument("config", type=Path)
     p.add_argument("--run", required=True, help="the render, <technique>/<budget>_seed<n>.exr")

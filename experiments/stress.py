@@ -113,6 +113,18 @@ class Render:
     pixels: np.ndarray | None = None  # height × width × 3
     variance: np.ndarray | None = None
 
+    def rgb(self) -> np.ndarray:
+        """The pixels of a render that succeeded."""
+        if self.pixels is None:
+            raise ValueError(f"a render that failed (status {self.status}) has no pixels")
+        return self.pixels
+
+    def variance_of_mean(self) -> np.ndarray:
+        """The variance channels of a render that succeeded."""
+        if self.variance is None:
+            raise ValueError(f"a render that failed (status {self.status}) has no variance")
+        return self.variance
+
 
 @dataclass
 class Row:
@@ -170,11 +182,11 @@ class BlockTest:
 def block_test(images: list[Render], reference: Render) -> BlockTest:
     """The test of each block's mean against the reference's: z from one render's variance
     channels, or t over several independent renders."""
-    ref_mean = block_means(reference.pixels)
-    ref_var = block_variances(reference.variance)
-    means = np.array([block_means(r.pixels) for r in images])
+    ref_mean = block_means(reference.rgb())
+    ref_var = block_variances(reference.variance_of_mean())
+    means = np.array([block_means(r.rgb()) for r in images])
     if len(images) == 1:
-        diff, var, dof = means[0] - ref_mean, block_variances(images[0].variance) + ref_var, None
+        diff, var, dof = means[0] - ref_mean, block_variances(images[0].variance_of_mean()) + ref_var, None
     else:
         dof = len(images) - 1
         diff, var = means.mean(0) - ref_mean, means.var(0, ddof=1) / len(images) + ref_var
@@ -242,7 +254,7 @@ def expected_lobe_hits(scene: Path, render: Render) -> float | None:
     omega = narrowest_lobe(scene)
     if omega is None:
         return None
-    h, w, _ = render.pixels.shape
+    h, w, _ = render.rgb().shape
     return SPP * h * w / GRID**2 * omega / math.pi
 
 
@@ -300,9 +312,9 @@ def judge(scenes: list[Path], renders: dict[tuple[str, str, str], Render]) -> Ve
             row.seconds = float(np.mean([i.seconds for i in images]))
             if (non_finite := sum(i.non_finite for i in images)) > 0:
                 row.problems.append(f"{non_finite:.0f} non-finite samples")
-            if not all(np.all(np.isfinite(i.pixels)) for i in images):
+            if not all(np.all(np.isfinite(i.rgb())) for i in images):
                 row.problems.append("non-finite pixels")
-            if not technique.signed and any(np.any(i.pixels < 0) for i in images):
+            if not technique.signed and any(np.any(i.rgb() < 0) for i in images):
                 row.problems.append("negative pixels")
             if name in HIT_ONLY and delta:
                 row.reference = "n/a (point or spot lights)"

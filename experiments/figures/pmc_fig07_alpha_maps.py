@@ -35,7 +35,7 @@ def write(profile_name: str) -> list[Path]:
     renders.render(run.exp, run.profile, integrator, exr, seed=0, spp=1, threads=2)
 
     alphas = channels(exr, [name for name, _ in COMPONENTS])
-    floor = sum(alphas) > 0  # pixels whose first hit made an estimate
+    floor = np.sum(alphas, axis=0) > 0  # pixels whose first hit made an estimate
     winner = np.argmax(np.stack(alphas), axis=0)
     shares = {name: float(np.mean(winner[floor] == k)) for k, (name, _) in enumerate(COMPONENTS)}
     means = {name: float(np.mean(a[floor])) for (name, _), a in zip(COMPONENTS, alphas)}

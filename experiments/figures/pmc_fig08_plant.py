@@ -24,7 +24,8 @@ TECHNIQUES = [("pmc_hi_27", "PMC-HI"), ("mis_27", "MIS")]
 def write(profile_name: str) -> list[Path]:
     run = figure_run(CONFIG, profile_name, "pmc", "fig08")
     renders.check_technique(run.exp, run.profile, run.exp.techniques["mis_27"])
-    images, zooms = {}, {}
+    images: dict[str, np.ndarray] = {}
+    zooms: dict[str, list[np.ndarray]] = {}
     for name, _ in TECHNIQUES:
         zooms[name] = []
         for seed in range(run.profile.seeds):
@@ -52,7 +53,7 @@ def write(profile_name: str) -> list[Path]:
             title += f": RMSE {np.mean(rmse):.4f}\n(mean of {len(rmse)} seeds)"
         ax.imshow(shown(zooms[name][0], scale), interpolation="nearest")
         ax.set_title(title, fontsize=10)
-    if full_reference is not None:
+    if full_reference is not None and reference is not None:
         axes[0, 2].imshow(shown(full_reference, scale))
         axes[0, 2].set_title("reference", fontsize=10)
         axes[1, 2].imshow(shown(reference, scale), interpolation="nearest")

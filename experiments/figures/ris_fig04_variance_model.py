@@ -29,7 +29,6 @@ draws cheaper too); T_X → 0 (free candidates) gives the ceiling, the gain at e
 M → ∞. Fitted by weighted least squares (each mean weighted by its standard error over seeds),
 with 95 % intervals from resampling the seeds. Writes the plot and
 results/tables/ris_variance_model<suffix>.md; nothing when the experiment has not been run."""
-import json
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -39,7 +38,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness import paths, plots, provenance, records  # noqa: E402
+from harness import paths, plots, provenance, records, results  # noqa: E402
+from harness.results import Results  # noqa: E402
 
 EXPERIMENT = "fig04_m_sweep"
 BASE_N = 20  # the paper's light samples per primary ray
@@ -103,13 +103,18 @@ def _counts(integrator: dict) -> tuple[float, float]:
     return float(integrator["candidates"]), float(integrator["samples"])
 
 
+def _mse_times_spp(group: list[records.RunRecord]) -> np.ndarray:
+    """MSE · spp of each run (the model's left side); every run of the sweep has an MSE."""
+    return np.array([(r.metrics["mse"] or np.nan) * r.spp for r in group])
+
+
 def _fit(runs: list[records.RunRecord], counts: dict[str, tuple[float, float]],
          pixels: int) -> Fit:
     groups = records.group_by_key(runs)
     rows, mse, weight = [], [], []
     for key, group in groups.items():
         m, n = counts[key.technique]
-        values = np.array([r.metrics["mse"] * r.spp for r in group])
+        values = _mse_times_spp(group)
         err = values.std(ddof=1) / np.sqrt(len(values)) if len(values) > 1 else values.mean()
         rows.append([1.0, 1 / (m * n), 1 / n])
         mse.append(values.mean())
@@ -168,13 +173,13 @@ def _quantities(fit: Fit) -> dict[str, float]:
     }
 
 
-def _table(doc: records.Results, fit: Fit, intervals: dict[str, tuple[float, float]]) -> str:
-    lines = [f"# RIS fig. 4 with the map: the most resampling could gain ({doc['profile']} "
+def _table(doc: Results, fit: Fit, intervals: dict[str, tuple[float, float]]) -> str:
+    lines = [f"# RIS fig. 4 with the map: the most resampling could gain ({doc.profile} "
              f"profile)", "",
-             f"From `{doc['config']['file']}` ({len(doc['seeds'])} seeds, "
-             f"{doc['resolution'][0]} × {doc['resolution'][1]}, "
-             f"{doc['provenance']['parallel_jobs']} renders at once, "
-             f"{doc['provenance']['threads_per_job']} thread each), written by "
+             f"From `{doc.config.file}` ({len(doc.seeds)} seeds, "
+             f"{doc.resolution[0]} × {doc.resolution[1]}, "
+             f"{doc.provenance.parallel_jobs} renders at once, "
+             f"{doc.provenance.threads_per_job} thread each), written by "
              "`experiments/figures/ris_fig04_variance_model.py` (the model is in its docstring). "
              "Gains are equal-time MSE ratios over light sampling (M = 1, N = 20) at the same "
              "primary rays, for the best M; intervals: 95 %, seeds resampled.", "",
@@ -190,10 +195,10 @@ def write(profile_name: str) -> list[Path]:
     file = paths.RESULTS / "ris" / f"{EXPERIMENT}{suffix}.json"
     if not file.exists():
         return []
-    doc = json.loads(file.read_text())
-    runs = [r for r in records.read_runs(doc) if r.kind == records.SPP]
-    counts = {name: _counts(t["integrator"]) for name, t in doc["techniques"].items()}
-    pixels = doc["resolution"][0] * doc["resolution"][1]
+    doc = results.read(file)
+    runs = [r for r in doc.runs if r.kind == records.SPP]
+    counts = {name: _counts(t.integrator) for name, t in doc.techniques.items()}
+    pixels = doc.resolution[0] * doc.resolution[1]
     fit = _fit(runs, counts, pixels)
     rng = np.random.default_rng(0)
     resampled = [_resampled(runs, counts, pixels, rng) for _ in range(BOOTSTRAP)]
@@ -207,9 +212,9 @@ def write(profile_name: str) -> list[Path]:
         m, n = counts[key.technique]
         if n != BASE_N:
             continue
-        values = np.array([r.metrics["mse"] * r.spp for r in group])
+        values = _mse_times_spp(group)
         by_m.errorbar(m, values.mean(), yerr=1.96 * values.std(ddof=1) / np.sqrt(len(values)),
-                      color="C0" if key.budget == max(doc["budgets"]["spp"]) else "C1",
+                      color="C0" if key.budget == max(doc.budgets.spp) else "C1",
                       marker="o", capsize=2, ls="none")
     ms = np.geomspace(1, 128, 200)
     by_m.plot(ms, fit.c + (fit.a / ms + fit.b) / BASE_N, "k-", lw=1,
@@ -240,7 +245,7 @@ def write(profile_name: str) -> list[Path]:
     for ax in (by_m, by_cost):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds)")
+    fig.suptitle(f"{doc.experiment} ({doc.profile} profile, {len(doc.seeds)} seeds)")
     fig.tight_layout()
     out = paths.PLOTS / "ris" / f"{EXPERIMENT}_variance_model{suffix}.png"
     plots.save(fig, out)

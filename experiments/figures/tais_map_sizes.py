@@ -3,11 +3,11 @@ whose size a figure's experiment sweeps, the error and the gain over the paper's
 each size, at the figure's table spp, in results/tables/tais_map_sizes.md. A size is a technique
 of the experiment whose integrator is TAIS with only that map; the technique without the size
 key renders the renderer's default. Nothing is written when none of the experiments has run."""
-import json
 from pathlib import Path
 
-from harness import paths, provenance, records, tables
+from harness import paths, provenance, records, results, tables
 from harness.records import SPP, TechniqueBudget
+from harness.results import Results
 
 # (map name in the configs, experiment, the integrator key of its size, its default in the
 # renderer (TaisSettings in renderer/techniques/tais/tais_settings.h), unit)
@@ -21,11 +21,11 @@ SWEEPS = [
 ]
 
 
-def _sizes(doc: records.Results, map_name: str, key: str, default: int) -> dict[str, int]:
+def _sizes(doc: Results, map_name: str, key: str, default: int) -> dict[str, int]:
     """technique -> map size, for the techniques rendering TAIS with only `map_name`."""
     sizes = {}
-    for name, t in doc["techniques"].items():
-        integrator = t["integrator"]
+    for name, t in doc.techniques.items():
+        integrator = t.integrator
         if integrator.get("type") == "tais" and integrator.get("maps") == [map_name]:
             others = set(integrator) - {"type", "maps", key}
             if not others:
@@ -33,19 +33,19 @@ def _sizes(doc: records.Results, map_name: str, key: str, default: int) -> dict[
     return sizes
 
 
-def _rows(doc: records.Results, sweep: tuple) -> list[str]:
+def _rows(doc: Results, sweep: tuple) -> list[str]:
     map_name, figure, key, default, unit = sweep
-    metric = doc["metrics"][0]
-    spp = doc["table"]["spp"]
-    entries = records.index_by_key(records.read_summary(doc))
+    metric = doc.primary_metric
+    spp = doc.table.spp
+    entries = records.index_by_key(doc.summary)
     sizes = _sizes(doc, map_name, key, default)
     rows = []
     for technique, size in sorted(sizes.items(), key=lambda item: item[1]):
         entry = entries.get(TechniqueBudget(technique, SPP, spp))
         m = entry.metrics.get(metric) if entry else None
-        if m is None:
+        if entry is None or m is None:
             continue
-        gain = (entry.gain or {}).get(metric)
+        gain = entry.gain.get(metric)
         default_mark = " (default)" if size == default else ""
         rows.append(f"| {map_name.replace('_', ' ')} | {figure} | {size}{unit}{default_mark} | {spp} | "
                     f"{tables.METRIC_NAMES[metric]} {m.mean:.4g} [{m.ci95[0]:.4g}, "
@@ -58,7 +58,7 @@ def write(profile_name: str) -> list[Path]:
     for sweep in SWEEPS:
         file = paths.RESULTS / "tais" / f"{sweep[1]}{paths.suffix(profile_name)}.json"
         if file.exists():
-            rows += _rows(json.loads(file.read_text()), sweep)
+            rows += _rows(results.read(file), sweep)
     if not rows:
         return []
     head = ("| map | figure | size | spp | error (mean [95 %] over seeds) | gain over the "

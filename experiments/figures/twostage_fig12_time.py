@@ -5,7 +5,6 @@ MIS's time for the same N (solid diamonds: its sampling assumed as cheap as MIS'
 preprocessing not charged) and at two-stage's time (hollow diamonds: equal samples); here also
 at its own measured time (crosses: the many-split partition charged). The right panel is the
 same error against N. Nothing is written when the experiment has not been run."""
-import json
 from pathlib import Path
 
 import matplotlib
@@ -14,8 +13,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from harness import paths, plots, records, tables  # noqa: E402
+from harness import paths, plots, results, tables  # noqa: E402
 from harness.records import SPP  # noqa: E402
+from harness.results import Results  # noqa: E402
 
 FIGURE = "fig12_time"
 CURVES = {"mis": ("MIS", "C0", "o"), "ris2": ("RIS 2", "C1", "s"),
@@ -23,12 +23,12 @@ CURVES = {"mis": ("MIS", "C0", "o"), "ris2": ("RIS 2", "C1", "s"),
 WAIS = "wais_sim"
 
 
-def _by_n(doc: records.Results, technique: str, metric: str) -> dict[float, tuple[float, ...]]:
+def _by_n(doc: Results, technique: str, metric: str) -> dict[float, tuple[float, ...]]:
     """N -> (mean render time, mean error, 95 % interval low, high) of one technique."""
-    out = {}
-    for s in records.read_summary(doc):
-        if s.technique == technique and s.kind == SPP:
-            m = s.metrics[metric]
+    out: dict[float, tuple[float, ...]] = {}
+    for s in doc.summary:
+        m = s.metrics[metric]
+        if s.technique == technique and s.kind == SPP and m is not None:
             out[s.budget] = (s.time.mean, m.mean, m.ci95[0], m.ci95[1])
     return out
 
@@ -45,8 +45,8 @@ def write(profile_name: str) -> list[Path]:
     file = paths.RESULTS / "twostage" / f"{FIGURE}{paths.suffix(profile_name)}.json"
     if not file.exists():
         return []
-    doc = json.loads(file.read_text())
-    metric = doc["metrics"][0]
+    doc = results.read(file)
+    metric = doc.primary_metric
     series = {t: _by_n(doc, t, metric) for t in list(CURVES) + [WAIS]}
     fig, (by_time, by_n) = plt.subplots(1, 2, figsize=(12, 4.6))
     for t, (label, colour, marker) in CURVES.items():
@@ -63,7 +63,7 @@ def write(profile_name: str) -> list[Path]:
     _line(by_time, ns, wais, lambda n: wais[n][0], color="C3", marker="x", ls=":",
           label="simulated WaIS at its own time (1024 splits charged)")
     _line(by_n, ns, wais, float, color="C3", marker="D", mfc="none", label="simulated WaIS")
-    threads = doc["provenance"]["threads_per_job"]
+    threads = doc.provenance.threads_per_job
     by_time.set_xlabel(f"render time (s, {threads} thread{'s' if threads > 1 else ''} per render)")
     by_n.set_xlabel("samples per pixel N")
     for ax in (by_time, by_n):
@@ -74,8 +74,8 @@ def write(profile_name: str) -> list[Path]:
         ax.legend(fontsize=7)
     by_time.set_title("quality against render time")
     by_n.set_title("quality against samples")
-    fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds, "
-                 f"{doc['resolution'][0]}×{doc['resolution'][1]}, 95 % intervals over seeds)")
+    fig.suptitle(f"{doc.experiment} ({doc.profile} profile, {len(doc.seeds)} seeds, "
+                 f"{doc.resolution[0]}×{doc.resolution[1]}, 95 % intervals over seeds)")
     fig.tight_layout()
     out = paths.PLOTS / "twostage" / f"{FIGURE}{paths.suffix(profile_name)}.png"
     plots.save(fig, out)

@@ -351,7 +351,7 @@ def _message(error: ValidationError) -> str:
     """The schema's "errorMessage" (an extension VS Code shows too) of the subschema that
     failed or, for a branch of an anyOf, of the anyOf's; jsonschema's wording where there is
     none. An enum's message lists its values."""
-    holder: ValidationError | None = error
+    holder: Any = error  # a ValidationError, or None past the root
     while holder is not None and "errorMessage" not in holder.schema:
         holder = holder.parent
     text = error.message if holder is None else holder.schema["errorMessage"]
@@ -524,10 +524,12 @@ def _profile(name: str, p: dict[str, Any]) -> Profile:
     if table_seconds not in (None, MATCHED):
         table_seconds = float(table_seconds)
     crop = p.get("crop")
-    return Profile(name, tuple(p["resolution"]), p["spp"],
+    width, height = p["resolution"]
+    return Profile(name, (width, height), p["spp"],
                    [float(s) for s in p.get("seconds", [])], p["seeds"], p["reference_spp"],
                    p["table"]["spp"], table_seconds, p.get("threads_per_job", 1),
-                   tuple(crop) if crop else None, p.get("matched_spp", []))
+                   (crop[0], crop[1], crop[2], crop[3]) if crop else None,
+                   p.get("matched_spp", []))
 
 
 def _thresholds(t: dict[str, Any]) -> Thresholds:

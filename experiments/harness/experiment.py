@@ -26,7 +26,9 @@ from . import (config, fingerprints, jobs, paths, provenance, references, render
 from .config import Experiment, Profile
 from .errors import HarnessFailure
 from .records import (SPP, TIME, MatchedBudget, OriginalBudget, Run, RunRecord, SummaryEntry,
-                      TechniqueBudget, group_by_key, to_json)
+                      TechniqueBudget, group_by_key)
+from .results import (Budgets, ConfigFile, LineFit, Provenance, ReferenceEntry, Results,
+                      TableBudgets, TechniqueEntry, TechniqueSlopes)
 
 
 def expand(exp: Experiment, profile: Profile,
@@ -63,7 +65,7 @@ def matched_budgets(exp: Experiment, profile: Profile,
     for name, technique in exp.techniques.items():
         if not technique.fixed_spp or not technique.equal_time:
             continue
-        spp_of = {}
+        spp_of: dict[float, int] = {}
         for spp in profile.matched_spp:
             times = [r.time for r in groups.get(TechniqueBudget(name, SPP, spp), [])]
             if not times:
@@ -154,8 +156,8 @@ def execute(exp: Experiment, profile: Profile, runs: list[Run], out_dir: Path,
 
 
 def _column(group: list[RunRecord], metric: str) -> list[float] | None:
-    values = [r.metrics[metric] for r in group]
-    return None if any(v is None for v in values) else values
+    values = [v for r in group if (v := r.metrics[metric]) is not None]
+    return values if len(values) == len(group) else None
 
 
 def _efficiency_columns(group: list[RunRecord], metric: str) -> list[list[float]] | None:
@@ -183,10 +185,10 @@ def _gain(base_group: list[RunRecord], group: list[RunRecord], metric: str) -> s
         raise ValueError("the baseline and the technique were run with different seeds")
     try:
         if metric in config.EFFICIENCY_OF:
-            b, t = _efficiency_columns(base_group, metric), _efficiency_columns(group, metric)
-            if b is None or t is None:
+            bt, tt = _efficiency_columns(base_group, metric), _efficiency_columns(group, metric)
+            if bt is None or tt is None:
                 return None
-            return stats.mean_power_product(b + t, (1, 1, -1, -1))
+            return stats.mean_power_product(bt + tt, (1, 1, -1, -1))
         b, t = _column(base_group, metric), _column(group, metric)
         if b is None or t is None:
             return None
@@ -246,7 +248,8 @@ def in_time_range(runs: list[RunRecord], window: tuple[float, float]) -> list[Ru
     return [r for r in runs if window[0] <= times[(r.kind, r.budget)] <= window[1]]
 
 
-def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -> dict[str, Any]:
+def slopes(exp: Experiment, records: list[RunRecord],
+           scratch_dir: str | Path) -> dict[str, TechniqueSlopes]:
     """Least-squares slope of log(primary error) against log(spp) and log(time), over every
     run of each technique (all seeds and budgets), or with `slope_time_range: common` over the
     runs in the common time range, from `metrics slope`. A render entered twice
@@ -262,18 +265,21 @@ def slopes(exp: Experiment, records: list[RunRecord], scratch_dir: str | Path) -
     for technique, rs in runs.items():
         if window:
             rs = in_time_range(rs, window)
-        points = [{"spp": r.spp, "time": r.time, "error": r.metrics[exp.primary_metric]}
-                  for r in rs]
-        if len({p["spp"] for p in points}) >= 2 and all(p["error"] and p["error"] > 0
-                                                         for p in points):
-            out[technique] = renders.slope(points, Path(scratch_dir) / f"{technique}.json")
-            if common:
-                out[technique]["time_range"] = list(window) if window else None
+        points = [(r.spp, r.time, r.metrics[exp.primary_metric]) for r in rs]
+        errors = [e for _, _, e in points if e is not None and e > 0]
+        if len({spp for spp, _, _ in points}) >= 2 and len(errors) == len(points):
+            fit = renders.slope([{"spp": spp, "time": time, "error": error}
+                                 for (spp, time, _), error in zip(points, errors)],
+                                Path(scratch_dir) / f"{technique}.json")
+            out[technique] = TechniqueSlopes(LineFit(**fit["vs_spp"]), LineFit(**fit["vs_time"]),
+                                             windowed=common, time_range=window)
     return out
 
 
 def smallest_rmse(records: list[RunRecord]) -> float:
-    return min(r.metrics["rmse"] for r in records)
+    """The smallest RMSE of the renders (`metrics compare` computes one for every render)."""
+    values = [r.metrics["rmse"] for r in records]
+    return min(v for v in values if v is not None) if None not in values else float("nan")
 
 
 def children_cpu_seconds() -> float:
@@ -283,63 +289,57 @@ def children_cpu_seconds() -> float:
 
 def results_document(exp: Experiment, profile: Profile, records: list[RunRecord],
                      matched: list[MatchedBudget], entry: dict[str, Any], reference_file: Path,
-                     engine: dict[str, Any]) -> dict[str, Any]:
-    """The results document of a finished profile from its records (in run order, matched
-    duplicates last), whichever engine rendered them; refuses a too-noisy reference. `engine`
-    holds what only the engine knows: its name ("engine"), started, wall_seconds, cpu_seconds,
+                     engine: dict[str, Any]) -> Results:
+    """The results of a finished profile from its records (in run order, matched duplicates
+    last), whichever engine rendered them; refuses a too-noisy reference. `engine` holds what
+    only the engine knows: its name ("engine"), started, wall_seconds, cpu_seconds,
     parallel_jobs, and optionally the hosts its jobs ran on."""
     ratio = references.check_noise(exp, profile, entry, smallest_rmse(records))
     with tempfile.TemporaryDirectory() as scratch:
         fitted = slopes(exp, records, scratch)
-    return {
-        "experiment": exp.id,
-        "profile": profile.name,
-        "description": exp.description,
-        "config": {"file": paths.relative(exp.file), "sha256": exp.profile_sha256[profile.name]},
-        "scene": paths.relative(exp.scene),
-        "set": exp.overrides,
-        "techniques": {t.name: {"label": t.label, "integrator": t.integrator,
-                                "fixed_spp": t.fixed_spp,
-                                **({"samples_at": t.samples_at} if t.samples_at else {}),
-                                **({"set": t.overrides} if t.overrides else {}),
-                                **({} if t.equal_time else {"equal_time": False})}
-                       for t in exp.techniques.values()},
-        "baseline": exp.baseline,
-        **({"also_baseline": exp.also_baseline} if exp.also_baseline else {}),
-        "metrics": exp.metrics,
-        "relmse_reject": exp.relmse_reject,
-        "resolution": list(profile.resolution),
-        "seeds": list(range(profile.seeds)),
-        "budgets": {"spp": profile.spp, "seconds": profile.seconds,
-                    "matched_spp": profile.matched_spp},
-        "table": {"spp": profile.table_spp, "seconds": profile.table_seconds},
-        "matched": [to_json(m) for m in matched],
-        "crop": list(profile.crop) if profile.crop else None,
-        "reference": {"file": paths.relative(reference_file), "sha256": entry["sha256"],
-                      "integrator": entry["integrator"], "spp": entry["spp"],
-                      "noise_rmse": entry["noise_rmse"],
-                      "noise_sigma_over_mu": entry["noise_sigma_over_mu"],
-                      "noise_ratio_to_smallest_error": ratio},
-        "paper": [to_json(p) for p in exp.paper],
-        "provenance": {
-            "git_commit": provenance.git_commit(),
-            "git_dirty": provenance.git_dirty(),
-            "engine": engine["engine"],
-            "started": engine["started"],
-            "wall_seconds": engine["wall_seconds"],
-            "cpu_seconds": engine["cpu_seconds"],
-            "machine": provenance.machine(),
-            "parallel_jobs": engine["parallel_jobs"],
-            "threads_per_job": profile.threads_per_job,
-            "command": " ".join(sys.argv),
-            **({"hosts": engine["hosts"]} if "hosts" in engine else {}),
-        },
-        "fingerprints": [to_json(f) for f in fingerprints.record(exp, profile, records,
-                                                                  engine["parallel_jobs"])],
-        "summary": [to_json(s) for s in summarise(exp, records)],
-        "slopes": fitted,
-        "runs": [to_json(r) for r in records],
-    }
+    return Results(
+        experiment=exp.id,
+        profile=profile.name,
+        description=exp.description,
+        config=ConfigFile(paths.relative(exp.file), exp.profile_sha256[profile.name]),
+        scene=paths.relative(exp.scene),
+        set=exp.overrides,
+        techniques={t.name: TechniqueEntry(t.label, t.integrator, t.fixed_spp,
+                                           samples_at=t.samples_at or None,
+                                           set=t.overrides or None,
+                                           equal_time=None if t.equal_time else False)
+                    for t in exp.techniques.values()},
+        baseline=exp.baseline,
+        also_baseline=exp.also_baseline,
+        metrics=exp.metrics,
+        relmse_reject=exp.relmse_reject,
+        resolution=profile.resolution,
+        seeds=list(range(profile.seeds)),
+        budgets=Budgets(profile.spp, profile.seconds, profile.matched_spp),
+        table=TableBudgets(profile.table_spp, profile.table_seconds),
+        matched=matched,
+        crop=profile.crop,
+        reference=ReferenceEntry(paths.relative(reference_file), entry["sha256"],
+                                 entry["integrator"], entry["spp"], entry["noise_rmse"],
+                                 entry["noise_sigma_over_mu"], ratio),
+        paper=exp.paper,
+        provenance=Provenance(
+            git_commit=provenance.git_commit(),
+            git_dirty=provenance.git_dirty(),
+            engine=engine["engine"],
+            started=engine["started"],
+            wall_seconds=engine["wall_seconds"],
+            cpu_seconds=engine["cpu_seconds"],
+            machine=provenance.machine(),
+            parallel_jobs=engine["parallel_jobs"],
+            threads_per_job=profile.threads_per_job,
+            command=" ".join(sys.argv),
+            hosts=engine.get("hosts")),
+        fingerprints=fingerprints.record(exp, profile, records, engine["parallel_jobs"]),
+        summary=summarise(exp, records),
+        slopes=fitted,
+        runs=records,
+    )
 
 
 def run(exp: Experiment, profile_name: str, workers: int) -> Path:
@@ -371,5 +371,5 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
         "cpu_seconds": round(children_cpu_seconds() - cpu_started, 1),
         "parallel_jobs": parallel_jobs(profile, workers)})
     out = exp.results_file(profile.name)
-    provenance.write_json_atomically(out, document)
+    provenance.write_json_atomically(out, document.to_json())
     return out

@@ -16,7 +16,8 @@ from matplotlib.figure import Figure  # noqa: E402
 
 from . import paths, records, tables  # noqa: E402
 from .exr import read_exr  # noqa: E402
-from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget  # noqa: E402
+from .records import SPP, TIME, SummaryEntry, TechniqueBudget  # noqa: E402
+from .results import Results  # noqa: E402
 
 
 def _axis(entry: SummaryEntry, kind: str) -> float:
@@ -28,35 +29,36 @@ def _series(doc: Results, technique: str, kind: str) -> tuple[np.ndarray, ...]:
     """(x, mean, lo, hi) over a technique's budgets of one kind, x = mean spp or time. Against
     time, a fixed-spp technique's points are its equal-sample budgets (its equal-time entries
     at matched budgets are copies of some of them)."""
-    metric = doc["metrics"][0]
+    metric = doc.primary_metric
     entries_kind = kind
-    if kind == TIME and records.fixed_spp(doc, technique):
+    if kind == TIME and doc.fixed_spp(technique):
         entries_kind = SPP
-    rows = sorted((s for s in records.read_summary(doc)
+    rows = sorted((s for s in doc.summary
                    if s.technique == technique and s.kind == entries_kind),
                   key=lambda s: _axis(s, kind))
-    m = [s.metrics[metric] for s in rows]
+    m = [e for s in rows if (e := s.metrics[metric]) is not None]
     return (np.array([_axis(s, kind) for s in rows]), np.array([e.mean for e in m]),
             np.array([e.ci95[0] for e in m]), np.array([e.ci95[1] for e in m]))
 
 
 def _panel(ax: Axes, doc: Results, kind: str) -> None:
-    metric = doc["metrics"][0]
-    for i, technique in enumerate(doc["techniques"]):
+    metric = doc.primary_metric
+    for i, technique in enumerate(doc.techniques):
         x, mean, lo, hi = _series(doc, technique, kind)
         if len(x) == 0:
             continue
         colour = f"C{i}"
-        fit = doc["slopes"].get(technique, {}).get("vs_spp" if kind == SPP else "vs_time")
-        label = technique + (f"  slope {fit['slope']:.3f} ± {fit['slope_stderr']:.3f}" if fit
+        slopes = doc.slopes.get(technique)
+        fit = None if slopes is None else slopes.vs_spp if kind == SPP else slopes.vs_time
+        label = technique + (f"  slope {fit.slope:.3f} ± {fit.slope_stderr:.3f}" if fit
                              else "")
         ax.fill_between(x, np.maximum(lo, mean * 1e-3), hi, color=colour, alpha=0.2, lw=0)
         ax.plot(x, mean, "o-", color=colour, label=label, ms=4)
     if kind == SPP:
-        x0 = min(doc["budgets"]["spp"])
-        first = [s for s in records.read_summary(doc) if s.kind == SPP and s.budget == x0]
-        y0 = max(s.metrics[metric].mean for s in first)
-        xs = np.array([x0, max(doc["budgets"]["spp"])], dtype=float)
+        x0 = min(doc.budgets.spp)
+        first = [s for s in doc.summary if s.kind == SPP and s.budget == x0]
+        y0 = max(m.mean for s in first if (m := s.metrics[metric]) is not None)
+        xs = np.array([x0, max(doc.budgets.spp)], dtype=float)
         ax.plot(xs, y0 * (xs / x0) ** -0.5, "k:", lw=1, label="N^-0.5")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -68,14 +70,14 @@ def _panel(ax: Axes, doc: Results, kind: str) -> None:
 
 
 def convergence(doc: Results, out: Path) -> None:
-    has_time = any(s.kind == TIME for s in records.read_summary(doc))
+    has_time = any(s.kind == TIME for s in doc.summary)
     fig, axes = plt.subplots(1, 2 if has_time else 1, figsize=(11 if has_time else 6, 4.2),
                              squeeze=False)
     _panel(axes[0][0], doc, SPP)
     if has_time:
         _panel(axes[0][1], doc, TIME)
-    fig.suptitle(f"{doc['experiment']} ({doc['profile']} profile, {len(doc['seeds'])} seeds, "
-                 f"{doc['resolution'][0]}×{doc['resolution'][1]})")
+    fig.suptitle(f"{doc.experiment} ({doc.profile} profile, {len(doc.seeds)} seeds, "
+                 f"{doc.resolution[0]}×{doc.resolution[1]})")
     fig.tight_layout()
     save(fig, out)
 
@@ -93,11 +95,11 @@ def _display(rgb: np.ndarray) -> np.ndarray:
 def crops(doc: Results, out: Path) -> bool:
     """Reference | baseline | each technique, seed 0 at the table's sample budget. Returns
     False when the renders are not on disk (results from another machine)."""
-    budget = doc["table"]["spp"]
-    panels = [("reference", paths.output(doc["reference"]["file"]))]
-    techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
-    runs = records.group_by_key(records.read_runs(doc))
-    metric = doc["metrics"][0]
+    budget = doc.table.spp
+    panels = [("reference", paths.output(doc.reference.file))]
+    techniques = [doc.baseline] + [t for t in doc.techniques if t != doc.baseline]
+    runs = records.group_by_key(doc.runs)
+    metric = doc.primary_metric
     for t in techniques:
         run = next(r for r in runs[TechniqueBudget(t, SPP, budget)] if r.seed == 0)
         panels.append((f"{t}, {budget:g} spp\n{tables.METRIC_NAMES[metric]} "
@@ -108,8 +110,8 @@ def crops(doc: Results, out: Path) -> bool:
                              layout="constrained")
     for ax, (title, file) in zip(axes[0], panels):
         rgb = read_rgb(file)
-        if doc.get("crop"):
-            x, y, w, h = doc["crop"]
+        if doc.crop:
+            x, y, w, h = doc.crop
             rgb = rgb[y:y + h, x:x + w]
         ax.imshow(_display(rgb), interpolation="nearest")
         ax.set_title(title, fontsize=9)

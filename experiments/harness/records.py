@@ -10,14 +10,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
-from .config import PaperNumbers
 from .stats import EfficiencyEstimate, Estimate, Gain, MetricSummary
 
 SPP = "spp"  # equal samples: the budget is samples per pixel
 TIME = "time"  # equal time: the budget is seconds
-
-# A results document as read from or written to results/<paper>/<figure>.json.
-Results = dict[str, Any]
 
 
 @dataclass(frozen=True)
@@ -62,7 +58,10 @@ class RunRecord(Run):
 
     @classmethod
     def from_json(cls, value: dict[str, Any]) -> RunRecord:
-        return cls(**{**value, "duplicate_of": _original_budget(value.get("duplicate_of"))})
+        return cls(value["technique"], value["kind"], value["budget"], value["seed"],
+                   spp=value["spp"], time=value["time"], file=value["file"],
+                   metrics=value["metrics"],
+                   duplicate_of=_original_budget(value.get("duplicate_of")))
 
 
 @dataclass(frozen=True)
@@ -83,7 +82,7 @@ class SummaryEntry(TechniqueBudget):
             spp=_with_interval(Estimate, value["spp"]),
             time=_with_interval(Estimate, value["time"]),
             metrics={name: _metric_summary(m) for name, m in value["metrics"].items()},
-            gain=_gains(value["gain"]),
+            gain=_gains(value["gain"]) or {},
             duplicate_of=_original_budget(value.get("duplicate_of")),
             also_gain=_gains(value.get("also_gain")))
 
@@ -123,28 +122,6 @@ def _gains(value: dict[str, Any] | None) -> dict[str, Gain | None] | None:
 
 def _original_budget(value: dict[str, Any] | None) -> OriginalBudget | None:
     return None if value is None else OriginalBudget(**value)
-
-
-def fixed_spp(results: Results, technique: str) -> bool:
-    """Results made before fixed-spp techniques existed have none."""
-    return results["techniques"][technique].get("fixed_spp", False)
-
-
-def read_runs(results: Results) -> list[RunRecord]:
-    return [RunRecord.from_json(r) for r in results["runs"]]
-
-
-def read_summary(results: Results) -> list[SummaryEntry]:
-    return [SummaryEntry.from_json(s) for s in results["summary"]]
-
-
-def read_paper(results: Results) -> list[PaperNumbers]:
-    return [PaperNumbers(**p) for p in results["paper"]]
-
-
-def read_matched(results: Results) -> list[MatchedBudget]:
-    """Results made before matched budgets existed have none."""
-    return [MatchedBudget(**m) for m in results.get("matched", [])]
 
 
 R = TypeVar("R", bound=TechniqueBudget)

@@ -61,9 +61,10 @@ def check(args: Sequence[object]) -> SceneCheck:
     except ValueError:
         raise jobs.failure(proc) from None
     if not answer["valid"]:
-        raise SceneRejected(paths.relative(args[0]), answer["error"], answer["pointer"],
+        raise SceneRejected(paths.relative(str(args[0])), answer["error"], answer["pointer"],
                             answer["message"])
-    return SceneCheck(answer["integrator"], tuple(answer["resolution"]), answer["spp"],
+    width, height = answer["resolution"]
+    return SceneCheck(answer["integrator"], (width, height), answer["spp"],
                       answer["features"], answer["sceneSha256"], answer["estimandSha256"],
                       answer["pinned"])
 

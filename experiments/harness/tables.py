@@ -2,17 +2,17 @@
 convergence slopes), CSV (every number) and LaTeX (the main table, booktabs)."""
 import csv
 import io
-import json
 import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import config, paths, provenance, records, stats
+from . import config, paths, provenance, records, results, stats
 from .config import PaperNumbers
 from .errors import ConfigError
-from .records import SPP, TIME, Results, SummaryEntry, TechniqueBudget
+from .records import SPP, TIME, SummaryEntry, TechniqueBudget
+from .results import Results
 
 METRIC_NAMES = {"sigma_over_mu": "σ/µ", "rmse": "RMSE", "mse": "MSE", "relmse": "relMSE",
                 "tvi_err": "Err (tvi)", "p_eff": "P-Eff", "mse_eff": "1/(T·MSE)",
@@ -25,14 +25,14 @@ def load_results(profile_name: str) -> dict[str, list[Results]]:
     for file in sorted(paths.RESULTS.glob(f"*/*{paths.suffix(profile_name)}.json")):
         if file.parent.name in ("tables", "plots", "renders", "previews"):
             continue
-        doc = json.loads(file.read_text())
-        if doc["profile"] == profile_name:
+        doc = results.read(file)
+        if doc.profile == profile_name:
             by_paper.setdefault(file.parent.name, []).append(doc)
     return by_paper
 
 
 def figure_of(doc: Results) -> str:
-    return doc["experiment"].split("/")[1]
+    return doc.experiment.split("/")[1]
 
 
 def _matched_to(doc: Results, row: SummaryEntry) -> str:
@@ -40,32 +40,32 @@ def _matched_to(doc: Results, row: SummaryEntry) -> str:
     render time (several joined by ", "); "" otherwise."""
     if row.kind != TIME:
         return ""
-    return ", ".join(f"{m.technique} at {m.spp} spp" for m in records.read_matched(doc)
+    return ", ".join(f"{m.technique} at {m.spp} spp" for m in doc.matched
                      if m.seconds == row.budget)
 
 
 def _table_spp(doc: Results) -> int:
     """The equal-sample budget of the paper's number for the primary metric, else the
     table's."""
-    paper = _paper_entry(doc, doc["metrics"][0])
-    return paper.spp if paper else doc["table"]["spp"]
+    paper = _paper_entry(doc, doc.primary_metric)
+    return paper.spp if paper else doc.table.spp
 
 
-def _rows(doc: Results) -> list[SummaryEntry]:
+def table_rows(doc: Results) -> list[SummaryEntry]:
     """The table's rows: each technique (baseline first) at _table_spp, and, when the profile
     has one, at the table's equal-time budget (fixed-spp techniques have none). With
     "matched" as the table's seconds, the equal-time rows follow the equal-sample ones: for
     each fixed-spp technique, the time-capable techniques (baseline first) at its matched
     time for the table's spp, then the technique itself at that time (its own renders at that
     spp)."""
-    techniques = [doc["baseline"]] + [t for t in doc["techniques"] if t != doc["baseline"]]
-    summary = records.index_by_key(records.read_summary(doc))
-    spp, seconds = _table_spp(doc), doc["table"]["seconds"]
-    if seconds == config.MATCHED:
+    techniques = [doc.baseline] + [t for t in doc.techniques if t != doc.baseline]
+    summary = records.index_by_key(doc.summary)
+    spp, seconds = _table_spp(doc), doc.table.seconds
+    if isinstance(seconds, str):  # config.MATCHED
         rows = [summary[TechniqueBudget(t, SPP, spp)] for t in techniques]
-        capable = [t for t in techniques if not records.fixed_spp(doc, t)]
-        for m in records.read_matched(doc):
-            if m.spp == doc["table"]["spp"]:
+        capable = [t for t in techniques if not doc.fixed_spp(t)]
+        for m in doc.matched:
+            if m.spp == doc.table.spp:
                 rows += [summary[TechniqueBudget(t, TIME, m.seconds)]
                          for t in capable + [m.technique]]
         return rows
@@ -79,7 +79,7 @@ def _rows(doc: Results) -> list[SummaryEntry]:
 
 def _paper_entry(doc: Results, metric: str, spp: float | None = None) -> PaperNumbers | None:
     """The paper's numbers for a metric (at an equal-sample budget, when given)."""
-    for p in records.read_paper(doc):
+    for p in doc.paper:
         if p.metric == metric and (spp is None or p.spp == spp):
             return p
     return None
@@ -101,9 +101,9 @@ def _paper_cells(doc: Results, row: SummaryEntry, metric: str) -> PaperCells:
     if paper is None:
         return PaperCells()
     value = paper.values.get(row.technique)
-    if row.technique == doc["baseline"]:
+    if row.technique == doc.baseline:
         return PaperCells(value, paper.spp)
-    paper_gain = stats.paper_gain(paper.values, doc["baseline"], row.technique,
+    paper_gain = stats.paper_gain(paper.values, doc.baseline, row.technique,
                                   config.METRICS[metric])
     return PaperCells(value, paper.spp, paper_gain,
                       stats.verdict(row.gain.get(metric), paper_gain))
@@ -126,7 +126,7 @@ class RowValues:
 
 
 def _row_values(doc: Results, row: SummaryEntry, metric: str | None = None) -> RowValues:
-    metric = metric or doc["metrics"][0]
+    metric = metric or doc.primary_metric
     m = row.metrics[metric]
     budget = f"{row.budget:g} {'spp' if row.kind == SPP else 's'}"
     if _matched_to(doc, row):
@@ -156,7 +156,7 @@ def _comparison_cells(v: RowValues, also: bool) -> str:
 
 
 def _has_also_baseline(docs: list[Results]) -> bool:
-    return any("also_baseline" in doc for doc in docs)
+    return any(doc.also_baseline for doc in docs)
 
 
 ALSO_HEAD = " gain over 2nd baseline (95 %) |"
@@ -167,14 +167,14 @@ def separator(head: str) -> str:
     return "|" + "---|" * (head.count("|") - 1)
 
 
-def _main_table(docs: list[Results]) -> list[str]:
+def main_table(docs: list[Results]) -> list[str]:
     also = _has_also_baseline(docs)
     head = ("| figure | technique | budget | spp | time (s) | metric | ours (mean ± 95 %) | paper "
             "| gain over baseline (95 %) |" + (ALSO_HEAD if also else "") +
             " paper's gain | verdict |")
     lines = [head, separator(head)]
     for doc in docs:
-        for row in _rows(doc):
+        for row in table_rows(doc):
             v = _row_values(doc, row)
             lines.append(f"| {v.figure} | {v.technique} | {v.budget} | {v.spp:.4g} | "
                          f"{v.time:.3g} | {METRIC_NAMES[v.metric]} | " +
@@ -188,8 +188,8 @@ def _secondary_table(docs: list[Results]) -> list[str]:
             "baseline (95 %) |" + (ALSO_HEAD if also else "") + " paper's gain | verdict |")
     lines = [head, separator(head)]
     for doc in docs:
-        for row in _rows(doc):
-            for metric in doc["metrics"][1:]:
+        for row in table_rows(doc):
+            for metric in doc.metrics[1:]:
                 v = _row_values(doc, row, metric)
                 lines.append(f"| {v.figure} | {v.technique} | {v.budget} | "
                              f"{METRIC_NAMES[metric]} | " + _comparison_cells(v, also))
@@ -200,27 +200,25 @@ def _slope_table(docs: list[Results]) -> list[str]:
     lines = ["| figure | technique | metric | slope vs spp (± s.e.) | R² | slope vs time (± s.e.) "
              "| R² | points |", "|---|---|---|---|---|---|---|---|"]
     for doc in docs:
-        for technique, s in doc["slopes"].items():
-            a, b = s["vs_spp"], s.get("vs_time")
-            time_cells = (f"{b['slope']:.3f} ± {b['slope_stderr']:.3f} | {b['r2']:.3f}" if b
-                          else "— | —")
-            window = ("" if "time_range" not in s else " (no common time range: every run)"
-                      if s["time_range"] is None else
-                      f" (runs in {s['time_range'][0]:.3g}–{s['time_range'][1]:.3g} s)")
+        for technique, s in doc.slopes.items():
+            a, b = s.vs_spp, s.vs_time
+            window = ("" if not s.windowed else " (no common time range: every run)"
+                      if s.time_range is None else
+                      f" (runs in {s.time_range[0]:.3g}–{s.time_range[1]:.3g} s)")
             lines.append(f"| {figure_of(doc)}{window} | {technique} | "
-                         f"{METRIC_NAMES[doc['metrics'][0]]} | "
-                         f"{a['slope']:.3f} ± {a['slope_stderr']:.3f} | {a['r2']:.3f} | "
-                         f"{time_cells} | {a['n']} |")
+                         f"{METRIC_NAMES[doc.primary_metric]} | "
+                         f"{a.slope:.3f} ± {a.slope_stderr:.3f} | {a.r2:.3f} | "
+                         f"{b.slope:.3f} ± {b.slope_stderr:.3f} | {b.r2:.3f} | {a.n} |")
     return lines
 
 
 def _equivalent_baseline_spp(doc: Results, error: float | None) -> float | None:
     """Samples per pixel at which the baseline's fitted convergence line (log error against log
     spp, over all its runs) reaches `error`; None without a fit."""
-    fit = doc["slopes"].get(doc["baseline"], {}).get("vs_spp")
-    if not fit or fit["slope"] >= 0 or not error or error <= 0:
+    slopes = doc.slopes.get(doc.baseline)
+    if slopes is None or slopes.vs_spp.slope >= 0 or not error or error <= 0:
         return None
-    return math.exp((math.log(error) - fit["intercept"]) / fit["slope"])
+    return math.exp((math.log(error) - slopes.vs_spp.intercept) / slopes.vs_spp.slope)
 
 
 def _cost_table(docs: list[Results]) -> list[str]:
@@ -231,21 +229,22 @@ def _cost_table(docs: list[Results]) -> list[str]:
              "gain, equal time | baseline spp for this error (× this spp) |",
              "|---|---|---|---|---|---|---|"]
     for doc in docs:
-        metric, spp = doc["metrics"][0], _table_spp(doc)
-        entries = records.read_summary(doc)
+        metric, spp = doc.primary_metric, _table_spp(doc)
+        entries = doc.summary
         summary = records.index_by_key(entries)
-        base = summary.get(TechniqueBudget(doc["baseline"], SPP, spp))
+        base = summary.get(TechniqueBudget(doc.baseline, SPP, spp))
         if base is None:
             continue
-        for t in doc["techniques"]:
+        for t in doc.techniques:
             row = summary.get(TechniqueBudget(t, SPP, spp))
-            if t == doc["baseline"] or row is None:
+            if t == doc.baseline or row is None:
                 continue
             cost = row.time.mean / base.time.mean
             timed = [s for s in entries if s.technique == t and s.kind == TIME
                      and s.duplicate_of is not None and s.duplicate_of.budget == spp]
             equal_time = timed[0].gain.get(metric) if timed else None
-            error = row.metrics[metric].mean if row.metrics[metric] else None
+            summary_metric = row.metrics[metric]
+            error = summary_metric.mean if summary_metric else None
             n = _equivalent_baseline_spp(doc, error)
             lines.append(f"| {figure_of(doc)} | {t} | {spp} | ×{cost:.3g} | "
                          f"{gain_text(row.gain.get(metric))} | {gain_text(equal_time)} | "
@@ -263,8 +262,8 @@ def config_changed(doc: Results) -> bool:
     """True when the experiment's config, as this profile sees it, differs from the one that
     made these results, or is gone."""
     try:
-        exp = config.load(paths.ROOT / doc["config"]["file"])
-        return exp.profile_sha256[doc["profile"]] != doc["config"]["sha256"]
+        exp = config.load(paths.ROOT / doc.config.file)
+        return exp.profile_sha256[doc.profile] != doc.config.sha256
     except ConfigError:
         return True
 
@@ -275,21 +274,21 @@ def _experiment_notes(docs: list[Results]) -> list[str]:
         if config_changed(doc):
             lines.append(f"- **{figure_of(doc)}: its config has changed since this run; run it "
                          "again.**")
-        ref = doc["reference"]
-        prov = doc["provenance"]
+        ref = doc.reference
+        prov = doc.provenance
         matched = "".join(f" Equal time matched to {m.technique} at {m.spp} spp: "
-                          f"{m.seconds:g} s." for m in records.read_matched(doc))
-        cpu = f", {prov['cpu_seconds']:.0f} CPU-seconds" if "cpu_seconds" in prov else ""
+                          f"{m.seconds:g} s." for m in doc.matched)
+        cpu = f", {prov.cpu_seconds:.0f} CPU-seconds" if prov.cpu_seconds is not None else ""
         lines.append(
-            f"- **{figure_of(doc)}** ({doc['profile']} profile, "
-            f"{doc['resolution'][0]}×{doc['resolution'][1]}, {len(doc['seeds'])} seeds, "
-            f"{prov['parallel_jobs']} parallel renders × {prov['threads_per_job']} thread, "
-            f"commit `{(prov['git_commit'] or 'unknown')[:10]}`"
-            f"{' (uncommitted changes)' if prov['git_dirty'] else ''}"
+            f"- **{figure_of(doc)}** ({doc.profile} profile, "
+            f"{doc.resolution[0]}×{doc.resolution[1]}, {len(doc.seeds)} seeds, "
+            f"{prov.parallel_jobs} parallel renders × {prov.threads_per_job} thread, "
+            f"commit `{(prov.git_commit or 'unknown')[:10]}`"
+            f"{' (uncommitted changes)' if prov.git_dirty else ''}"
             f"{cpu}"
-            f"): {doc['description']} "
-            f"Reference: `{ref['integrator']['type']}`, {ref['spp']} spp, own noise σ/µ "
-            f"{ref['noise_sigma_over_mu']:.2g} = {ref['noise_ratio_to_smallest_error']:.2f} of "
+            f"): {doc.description} "
+            f"Reference: `{ref.integrator['type']}`, {ref.spp} spp, own noise σ/µ "
+            f"{ref.noise_sigma_over_mu:.2g} = {ref.noise_ratio_to_smallest_error:.2f} of "
             f"the smallest error measured.{matched}")
     return lines
 
@@ -299,9 +298,9 @@ def _legend(paper: str, docs: list[Results]) -> str:
     matched = (" A budget of \"T s (time of X at N spp)\" is X's mean render time at N spp: X "
                "renders a fixed number of samples, so the other techniques are given its time, "
                "and X's row there is its N-spp renders."
-               if any(records.read_matched(doc) for doc in docs) else "")
-    also = sorted({f"{figure_of(doc)}: {doc['also_baseline']} (baseline {doc['baseline']})"
-                   for doc in docs if "also_baseline" in doc})
+               if any(doc.matched for doc in docs) else "")
+    also = sorted({f"{figure_of(doc)}: {doc.also_baseline} (baseline {doc.baseline})"
+                   for doc in docs if doc.also_baseline})
     also_text = (" The 2nd baseline, against which gains are also given (no verdict): " +
                  "; ".join(also) + "." if also else "")
     return (
@@ -314,15 +313,31 @@ def _legend(paper: str, docs: list[Results]) -> str:
         "into it; — where the paper reports no number." + matched + also_text)
 
 
+def _freshness(docs: list[Results]) -> list[str]:
+    """For full-profile results, which `make check-results` does not re-render in `make test`:
+    the commit each was made at, so that a reader knows what code its numbers are from."""
+    full = [doc for doc in docs if doc.profile == "full"]
+    if not full:
+        return []
+    made = "; ".join(f"{figure_of(doc)} at `{(doc.provenance.git_commit or 'unknown')[:10]}` "
+                     f"({doc.provenance.started[:10]}"
+                     f"{', uncommitted changes' if doc.provenance.git_dirty else ''})"
+                     for doc in full)
+    return ["**Made at older commits, possibly stale.** Full-profile results take days of CPU "
+            "and are not re-run with every change; `make check-results PROFILE=full` re-renders "
+            "their fingerprints (results older than fingerprints have none, and are listed as "
+            f"stale). Each was made at: {made}.", ""]
+
+
 def markdown(paper: str, docs: list[Results]) -> str:
-    lines = [f"# {paper}: results", "", _legend(paper, docs), ""]
-    lines += _main_table(docs)
+    lines = [f"# {paper}: results", "", _legend(paper, docs), ""] + _freshness(docs)
+    lines += main_table(docs)
     lines += ["", "## Other metrics", ""] + _secondary_table(docs)
     lines += ["", "## Convergence", "",
               "Least-squares slope of log error against log samples and log render time over "
               "every run (all seeds and budgets), from `metrics slope`; plain Monte Carlo "
               "converges as −0.5.", ""] + _slope_table(docs)
-    if any(records.read_matched(doc) for doc in docs):
+    if any(doc.matched for doc in docs):
         lines += ["", "## Cost and equivalent samples", "",
                   "At each experiment's table budget. The baseline spp for the technique's error "
                   "comes from the baseline's fitted line of log error against log spp (see "
@@ -358,16 +373,16 @@ def csv_text(docs: list[Results]) -> str:
                 "matched_to", "also_baseline", "also_gain", "also_gain_ci95_lo",
                 "also_gain_ci95_hi"])
     for doc in docs:
-        for s in records.read_summary(doc):
-            for metric in doc["metrics"]:
+        for s in doc.summary:
+            for metric in doc.metrics:
                 paper = _paper_cells(doc, s, metric)
-                w.writerow([doc["experiment"], doc["profile"], s.technique, s.kind, s.budget,
+                w.writerow([doc.experiment, doc.profile, s.technique, s.kind, s.budget,
                             metric, *_metric_cells(s.metrics[metric]), s.spp.mean, s.time.mean,
                             *_gain_cells(s.gain.get(metric)),
                             "" if paper.value is None else paper.value,
                             "" if paper.gain is None else paper.gain,
                             "" if paper.verdict == "—" else paper.verdict, _matched_to(doc, s),
-                            doc.get("also_baseline", ""),
+                            (doc.also_baseline or ""),
                             *_gain_cells((s.also_gain or {}).get(metric))])
     return out.getvalue()
 
@@ -383,7 +398,7 @@ def latex(paper: str, docs: list[Results]) -> str:
              r"figure & technique & budget & metric & ours & $\pm$95\,\% & paper & gain & "
              r"paper gain \\", r"\midrule"]
     for doc in docs:
-        for row in _rows(doc):
+        for row in table_rows(doc):
             v = _row_values(doc, row)
             cells = [v.figure, v.technique, v.budget,
                      {"sigma_over_mu": r"$\sigma/\mu$"}.get(v.metric, v.metric),
@@ -400,7 +415,7 @@ def write_all(profile_name: str) -> list[Path]:
     for paper, docs in load_results(profile_name).items():
         for doc in docs:
             if config_changed(doc):
-                print(f"warning: {doc['experiment']}: the config has changed since these "
+                print(f"warning: {doc.experiment}: the config has changed since these "
                       "results were made; the tables say so", file=sys.stderr)
         for ext, text in (("md", markdown(paper, docs)), ("csv", csv_text(docs)),
                           ("tex", latex(paper, docs))):

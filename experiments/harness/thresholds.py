@@ -12,6 +12,7 @@ from . import experiment, records, references
 from .config import Experiment, ThresholdCheck, Thresholds
 from .errors import HarnessFailure
 from .records import SPP, SummaryEntry, TechniqueBudget
+from .results import Results
 from .stats import Estimate, Gain
 
 SIGMAS = 4  # thresholds sit this many standard deviations (or errors) from the measurement
@@ -30,12 +31,18 @@ class Verdict:
     passed: bool
 
 
+def _thresholds(exp: Experiment) -> Thresholds:
+    if exp.thresholds is None:
+        raise HarnessFailure(f"{exp.id}: the config has no thresholds")
+    return exp.thresholds
+
+
 def evaluate(exp: Experiment, summary: list[SummaryEntry]) -> list[Verdict]:
     """One verdict per stored limit, against a summary (see experiment.summarise)."""
     metric = exp.primary_metric
     by_key = records.index_by_key(summary)
     verdicts = []
-    for c in exp.thresholds.checks:
+    for c in _thresholds(exp).checks:
         s = by_key[TechniqueBudget(c.technique, SPP, c.spp)]
         if c.max_error is not None:
             error = s.metrics.get(metric)
@@ -54,9 +61,9 @@ def evaluate(exp: Experiment, summary: list[SummaryEntry]) -> list[Verdict]:
 def run_check(exp: Experiment, workers: int) -> list[Verdict]:
     """Renders what the thresholds need (their techniques and the baseline at their spp,
     every seed) into a scratch directory; returns the verdicts. Writes nothing else."""
-    profile = exp.profiles[exp.thresholds.profile]
+    profile = exp.profiles[_thresholds(exp).profile]
     needed = set()
-    for c in exp.thresholds.checks:
+    for c in _thresholds(exp).checks:
         needed.add(TechniqueBudget(c.technique, SPP, c.spp))
         if c.min_gain is not None:
             needed.add(TechniqueBudget(exp.baseline, SPP, c.spp))
@@ -95,32 +102,33 @@ def _min_gain(g: Gain) -> float:
                   math.floor)
 
 
-def calibrate(exp: Experiment, results: records.Results, spps: list[int]) -> Thresholds:
+def calibrate(exp: Experiment, results: Results, spps: list[int]) -> Thresholds:
     """A thresholds block from measured results: max_error = mean + 4 sd over seeds (rounded
     up), min_gain = gain · exp(-4 s.e. of log gain) (paired; rounded down). Either sits at
     least MIN_MARGIN from the measurement: CI machines may pick other Embree kernels, which
     perturb renders slightly, and two near-identical techniques on shared seeds have a paired
     gain with a standard error of 1e-6, which no such perturbation should trip."""
-    if results["config"]["sha256"] != exp.profile_sha256[results["profile"]]:
+    if results.config.sha256 != exp.profile_sha256[results.profile]:
         raise HarnessFailure(f"{exp.id}: the results were made with another version of the "
                              "config; run the experiment again first")
     metric = exp.primary_metric
     checks = []
-    for s in records.read_summary(results):
+    for s in results.summary:
         e, g = s.metrics[metric], s.gain.get(metric)
         if s.kind != SPP or s.budget not in spps or not e or e.mean <= 0:
             continue
-        checks.append(ThresholdCheck(s.technique, int(s.budget), _max_error(e),
+        checks.append(ThresholdCheck(s.technique, int(s.budget),
+                                     _max_error(e) if isinstance(e, Estimate) else None,
                                      None if g is None else _min_gain(g)))
     order = list(exp.techniques)
     checks.sort(key=lambda c: (order.index(c.technique), c.spp))
-    method = (f"max_error = mean + {SIGMAS} sd of {metric} over the {len(results['seeds'])} "
+    method = (f"max_error = mean + {SIGMAS} sd of {metric} over the {len(results.seeds)} "
               f"seeds; min_gain = gain x exp(-{SIGMAS} s.e. of the paired log gain); each at "
               f"least {MIN_MARGIN:.0%} from the measurement; set by `experiments/run.py "
-              f"calibrate` from the {results['profile']} profile at commit "
-              f"{(results['provenance']['git_commit'] or 'unknown')[:10]}, "
-              f"{results['provenance']['started'][:10]}")
-    return Thresholds(results["profile"], method, checks)
+              f"calibrate` from the {results.profile} profile at commit "
+              f"{(results.provenance.git_commit or 'unknown')[:10]}, "
+              f"{results.provenance.started[:10]}")
+    return Thresholds(results.profile, method, checks)
 
 
 def format_block(block: Thresholds) -> str:

@@ -123,7 +123,7 @@ def assemble(exp: Experiment, profile: Profile) -> Path:
         "parallel_jobs": 1,
         "hosts": sorted({j["host"] for j in jobs})})
     out = exp.results_file(profile.name)
-    provenance.write_json_atomically(out, document)
+    provenance.write_json_atomically(out, document.to_json())
     return out
 
 
