@@ -186,7 +186,8 @@ def block_test(images: list[Render], reference: Render) -> BlockTest:
     ref_var = block_variances(reference.variance_of_mean())
     means = np.array([block_means(r.rgb()) for r in images])
     if len(images) == 1:
-        diff, var, dof = means[0] - ref_mean, block_variances(images[0].variance_of_mean()) + ref_var, None
+        var = block_variances(images[0].variance_of_mean()) + ref_var
+        diff, dof = means[0] - ref_mean, None
     else:
         dof = len(images) - 1
         diff, var = means.mean(0) - ref_mean, means.var(0, ddof=1) / len(images) + ref_var

@@ -8,7 +8,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "experiments"))
 
-from harness import config, paths, records, stats  # noqa: E402
+from harness import config, paths, records, results, stats  # noqa: E402
 
 VALID = {
     "description": "test experiment",
@@ -90,3 +90,26 @@ def summary_entry(technique, kind, budget, metric_values, gain=None):
         time=stats.estimate([1.0, 1.0]),
         metrics={"sigma_over_mu": stats.estimate(metric_values), "p_eff": None},
         gain={"sigma_over_mu": gain} if gain else {})
+
+
+def results_document(**fields):
+    """A complete results file's contents (harness.results.Results) with placeholder values,
+    `fields` replacing them: what tables and calibrate read, without running anything."""
+    defaults = dict(
+        experiment="paper/fig5", profile="quick", description="synthetic",
+        config=results.ConfigFile("configs/experiments/core/path_vs_mis.json", "0" * 64),
+        scene="configs/scenes/cornell_spheres.json", set={},
+        techniques={"base": results.TechniqueEntry("base", {"type": "path"}),
+                    "better": results.TechniqueEntry("better", {"type": "path_mis"})},
+        baseline="base", metrics=["sigma_over_mu", "p_eff"], relmse_reject=0.0,
+        resolution=(8, 8), seeds=[0, 1, 2, 3, 4],
+        budgets=results.Budgets([16], []), table=results.TableBudgets(16, None), crop=None,
+        reference=results.ReferenceEntry("reference/paper/fig5.quick.exr", "0" * 64,
+                                         {"type": "path_mis"}, 1024, 0.001, 0.01, 0.05),
+        paper=[],
+        provenance=results.Provenance(git_commit=None, git_dirty=False,
+                                      started="2026-11-22T10:00", wall_seconds=1.0,
+                                      machine={}, parallel_jobs=2, threads_per_job=1,
+                                      command="run.py run"),
+        summary=[], slopes={}, runs=[])
+    return results.Results(**{**defaults, **fields})

@@ -11,10 +11,10 @@ from pathlib import Path
 
 import jsonschema
 
-from fixtures import from_root, load_config, summary_entry, valid, write_config
+from fixtures import from_root, load_config, results_document, summary_entry, valid, write_config
 from harness import config, paths, renders, stats
 from harness.errors import ConfigError
-from harness.records import to_json
+from harness.results import ConfigFile
 
 
 class ValidConfigTest(unittest.TestCase):
@@ -446,18 +446,15 @@ class VariantTest(unittest.TestCase):
         variant_file = write_config(variant, figure="film")
         exp = config.load(variant_file)
         base, better = [0.58, 0.60, 0.62, 0.59, 0.61], [0.24, 0.25, 0.26, 0.245, 0.255]
-        results = {"summary": [to_json(summary_entry("base", "spp", 16, base)),
-                               to_json(summary_entry("better", "spp", 16, better,
-                                                     stats.gain(base, better, False)))],
-                   "seeds": list(range(5)), "profile": "quick",
-                   "config": {"file": paths.relative(variant_file),
-                              "sha256": exp.profile_sha256["quick"]},
-                   "provenance": {"git_commit": None, "started": "2026-11-22"}}
+        results = results_document(
+            summary=[summary_entry("base", "spp", 16, base),
+                     summary_entry("better", "spp", 16, better, stats.gain(base, better, False))],
+            config=ConfigFile(paths.relative(variant_file), exp.profile_sha256["quick"]))
         parent_text = self.parent_file.read_text()
         with tempfile.TemporaryDirectory() as root:
             results_file = Path(root) / "results" / "paper" / "film.json"
             results_file.parent.mkdir(parents=True)
-            results_file.write_text(json.dumps(results))
+            results_file.write_text(json.dumps(results.to_json()))
             printed = subprocess.run(
                 [sys.executable, paths.ROOT / "experiments" / "run.py", "calibrate",
                  variant_file, "--spp", "16"], env={**os.environ, "HARNESS_OUTPUT_ROOT": root},

@@ -12,12 +12,13 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-from fixtures import load_config, summary_entry, tiny_matched, valid
+from fixtures import load_config, results_document, summary_entry, tiny_matched, valid
 from harness import (experiment, fingerprints, jobs, paths, references, stats, tables,
                      thresholds)
 from harness.errors import HarnessFailure
 from harness.records import (MatchedBudget, OriginalBudget, Run, RunRecord, TechniqueBudget,
-                             index_by_key, read_matched, read_runs, read_summary, to_json)
+                             index_by_key, to_json)
+from harness.results import Results, TableBudgets, TechniqueEntry
 
 SEEDS = range(5)
 
@@ -178,39 +179,35 @@ class MatchedBudgetsTest(unittest.TestCase):
         # base 0.4..0.44 against better 0.2..0.24 at 0.011 s: gain 0.42 / 0.22
         self.assertAlmostEqual(at_time.gain["sigma_over_mu"].value, 0.42 / 0.22)
         # Each technique's fit gets its points' count instead of a `metrics slope` call.
-        with mock.patch.object(experiment.renders, "slope", lambda points, _: len(points)):
+        def count(points, _):
+            fit = {"intercept": 0.0, "n": len(points), "r2": 1.0, "slope": -0.5,
+                   "slope_stderr": 0.0}
+            return {"vs_spp": fit, "vs_time": fit}
+        with mock.patch.object(experiment.renders, "slope", count):
             counted = experiment.slopes(exp, records + duplicates, "unused")
             self.assertEqual(counted, experiment.slopes(exp, records, "unused"))
-        self.assertEqual(counted["better"], 2 * 5)
+        self.assertEqual(counted["better"].vs_spp.n, 2 * 5)
 
 
 def _time_entry(technique, budget, values, gain=None, duplicate_of=None):
     e = summary_entry(technique, "time", budget, values, gain)
-    return to_json(dataclasses.replace(e, duplicate_of=duplicate_of))
+    return dataclasses.replace(e, duplicate_of=duplicate_of)
 
 
 class MatchedTablesTest(unittest.TestCase):
     def document(self, seconds):
         base, better = [1.0, 1.1, 0.9, 1.05, 0.95], [0.2, 0.22, 0.18, 0.21, 0.19]
         g = stats.gain(base, better, False)
-        return {
-            "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
-            "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
-            "techniques": {"base": {}, "better": {"fixed_spp": True}}, "baseline": "base",
-            "metrics": ["sigma_over_mu"], "resolution": [8, 8], "seeds": list(SEEDS),
-            "table": {"spp": 16, "seconds": seconds}, "paper": [],
-            "matched": [{"technique": "better", "spp": 16, "seconds": 0.012}],
-            "summary": [to_json(summary_entry("base", "spp", 16, base)),
-                        to_json(summary_entry("better", "spp", 16, better, g)),
-                        _time_entry("base", 0.5, base),
-                        _time_entry("base", 0.012, base),
-                        _time_entry("better", 0.012, better, g, OriginalBudget("spp", 16))],
-            "slopes": {},
-            "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
-                          "noise_sigma_over_mu": 0.01, "noise_ratio_to_smallest_error": 0.05},
-            "provenance": {"parallel_jobs": 2, "threads_per_job": 1, "git_commit": "abc",
-                           "git_dirty": False},
-        }
+        return results_document(
+            techniques={"base": TechniqueEntry("base", {"type": "path"}),
+                        "better": TechniqueEntry("better", {"type": "path_mis"}, fixed_spp=True)},
+            metrics=["sigma_over_mu"], table=TableBudgets(16, seconds),
+            matched=[MatchedBudget("better", 16, 0.012)],
+            summary=[summary_entry("base", "spp", 16, base),
+                     summary_entry("better", "spp", 16, better, g),
+                     _time_entry("base", 0.5, base),
+                     _time_entry("base", 0.012, base),
+                     _time_entry("better", 0.012, better, g, OriginalBudget("spp", 16))])
 
     def rows(self, text):
         return [line.split(" | ")[1:3] for line in text.split("## Other metrics")[0].splitlines()
@@ -264,6 +261,7 @@ class MatchedRunTest(unittest.TestCase):
             references.ensure([cls.exp], "quick")
             out = experiment.run(cls.exp, "quick", jobs.default_jobs())
         cls.doc = json.loads(out.read_text())
+        cls.results = Results.from_json(cls.doc)
         cls.runs = cls.doc["runs"]
         cls.T = cls.doc["matched"][0]["seconds"]
 
@@ -325,22 +323,19 @@ class MatchedRunTest(unittest.TestCase):
         self.assertIsNotNone(entry["gain"]["sigma_over_mu"])
         self.assertIsNotNone(entry["gain"]["p_eff"])
 
-    def test_records_read_back_as_they_were_written(self):
-        for name, read in (("runs", read_runs), ("summary", read_summary),
-                           ("matched", read_matched)):
-            with self.subTest(name):
-                self.assertEqual(json.dumps([to_json(r) for r in read(self.doc)]),
-                                 json.dumps(self.doc[name]))
+    def test_the_results_read_back_as_they_were_written(self):
+        self.assertEqual(json.dumps(Results.from_json(self.doc).to_json()), json.dumps(self.doc))
 
     def test_slopes_count_each_render_once(self):
         self.assertEqual(self.doc["slopes"]["path_mis"]["vs_spp"]["n"], 2 * 5)
         with tempfile.TemporaryDirectory() as scratch:
             without_copies = experiment.slopes(
-                self.exp, [r for r in read_runs(self.doc) if r.duplicate_of is None], scratch)
-        self.assertEqual(self.doc["slopes"], without_copies)
+                self.exp, [r for r in self.results.runs if r.duplicate_of is None],
+                scratch)
+        self.assertEqual(self.doc["slopes"], {t: s.to_json() for t, s in without_copies.items()})
 
     def test_tables_show_the_matched_rows(self):
-        text = tables.markdown("paper", [self.doc])
+        text = tables.markdown("paper", [self.results])
         budget = f"{self.T:g} s (time of path_mis at 8 spp)"
         rows = [line.split(" | ")[1:3] for line in text.split("## Other")[0].splitlines()
                 if line.startswith("| figure | path")]
@@ -348,22 +343,22 @@ class MatchedRunTest(unittest.TestCase):
                                 ["path_mis", budget]])
         row = [line for line in text.splitlines() if f"| path_mis | {budget}" in line][0]
         self.assertRegex(row, r"\| ×[0-9.]+ \[")
-        self.assertIn("time of path\\_mis at 8 spp", tables.latex("paper", [self.doc]))
+        self.assertIn("time of path\\_mis at 8 spp", tables.latex("paper", [self.results]))
 
     def test_calibration_uses_equal_sample_budgets_only(self):
-        block = thresholds.calibrate(self.exp, self.doc, [8])
+        block = thresholds.calibrate(self.exp, self.results, [8])
         self.assertEqual([(c.technique, c.spp) for c in block.checks],
                          [("path", 8), ("path_mis", 8)])
 
     def test_plots_draw_the_fixed_technique_against_time_from_its_spp_runs(self):
         from harness import plots
-        x, mean, _, _ = plots._series(self.doc, "path_mis", "time")
+        x, mean, _, _ = plots._series(self.results, "path_mis", "time")
         spp_entries = sorted((s for s in self.doc["summary"] if s["technique"] == "path_mis"
                               and s["kind"] == "spp"), key=lambda s: s["time"]["mean"])
         self.assertEqual(list(x), [s["time"]["mean"] for s in spp_entries])
         with tempfile.TemporaryDirectory() as scratch:
             out = Path(scratch) / "convergence.png"
-            plots.convergence(self.doc, out)
+            plots.convergence(self.results, out)
             self.assertTrue(out.exists())
 
 

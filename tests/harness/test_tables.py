@@ -1,35 +1,27 @@
 """Tables: a synthetic results document renders rows with intervals, gains and verdicts."""
 import csv
+import dataclasses
 import io
 import unittest
 
-from fixtures import summary_entry
-from harness import stats, tables
-from harness.records import to_json
+from fixtures import results_document, summary_entry
+from harness import results, stats, tables
+from harness.config import PaperNumbers
+from harness.results import LineFit, TechniqueSlopes
 
 BASE = [1.0, 1.1, 0.9, 1.05, 0.95]
 BETTER = [0.2, 0.22, 0.18, 0.21, 0.19]
 
 
-def document():
+def document(**fields):
+    """Results of a config whose hash has changed (the placeholder's), with a paper number."""
     g = stats.gain(BASE, BETTER, False)
-    return {
-        "experiment": "paper/fig5", "profile": "quick", "description": "synthetic",
-        "config": {"file": "configs/experiments/core/path_vs_mis.json", "sha256": "stale"},
-        "techniques": {"base": {}, "better": {}}, "baseline": "base",
-        "metrics": ["sigma_over_mu", "p_eff"], "resolution": [8, 8], "seeds": [0, 1, 2, 3, 4],
-        "table": {"spp": 16, "seconds": None},
-        "paper": [{"source": "x", "metric": "sigma_over_mu", "spp": 16,
-                   "values": {"base": 1.045, "better": 0.207}}],
-        "summary": [to_json(summary_entry("base", "spp", 16, BASE)),
-                    to_json(summary_entry("better", "spp", 16, BETTER, g))],
-        "slopes": {"base": {"vs_spp": {"slope": -0.5, "slope_stderr": 0.01, "r2": 0.99,
-                                       "n": 10}}},
-        "reference": {"integrator": {"type": "path_mis"}, "spp": 1024,
-                      "noise_sigma_over_mu": 0.01, "noise_ratio_to_smallest_error": 0.05},
-        "provenance": {"parallel_jobs": 2, "threads_per_job": 1, "git_commit": "abc",
-                       "git_dirty": False},
-    }
+    fit = LineFit(intercept=0.0, n=10, r2=0.99, slope=-0.5, slope_stderr=0.01)
+    return results_document(**{
+        "paper": [PaperNumbers("x", "sigma_over_mu", 16, {"base": 1.045, "better": 0.207})],
+        "summary": [summary_entry("base", "spp", 16, BASE),
+                    summary_entry("better", "spp", 16, BETTER, g)],
+        "slopes": {"base": TechniqueSlopes(fit, fit)}, **fields})
 
 
 class TablesTest(unittest.TestCase):
@@ -41,7 +33,8 @@ class TablesTest(unittest.TestCase):
         self.assertIn("×5.05", row)
         self.assertIn("reproduced", row)
         self.assertIn("0.207 (16 spp)", row)
-        self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | — | — | 10 |", text)
+        self.assertIn("| fig5 | base | σ/µ | -0.500 ± 0.010 | 0.990 | -0.500 ± 0.010 | 0.990 | "
+                      "10 |", text)
 
     def test_the_legend_explains_every_verdict(self):
         legend = tables.markdown("paper", [document()]).split("\n\n")[1]
@@ -62,19 +55,18 @@ class TablesTest(unittest.TestCase):
         self.assertEqual(better[0]["verdict"], "reproduced")
 
     def test_a_second_baseline_gets_its_own_gain_column(self):
-        doc = document()
-        doc["techniques"]["default"] = {}
-        doc["also_baseline"] = "default"
         default = [0.5, 0.55, 0.45, 0.52, 0.48]
         entries = [summary_entry("base", "spp", 16, BASE),
                    summary_entry("better", "spp", 16, BETTER, stats.gain(BASE, BETTER, False)),
                    summary_entry("default", "spp", 16, default, stats.gain(BASE, default, False))]
         also = {"base": stats.gain(default, BASE, False), "better": stats.gain(default, BETTER,
                                                                                 False)}
-        doc["summary"] = [{**to_json(e), "also_gain": ({"sigma_over_mu": to_json(also[e.technique]),
-                                                        "p_eff": None}
-                                                       if e.technique in also else {})}
-                          for e in entries]
+        techniques = {**document().techniques,
+                      "default": results.TechniqueEntry("default", {"type": "path_mis"})}
+        doc = document(techniques=techniques, also_baseline="default", summary=[
+            dataclasses.replace(e, also_gain=({"sigma_over_mu": also[e.technique], "p_eff": None}
+                                              if e.technique in also else {}))
+            for e in entries])
         text = tables.markdown("paper", [doc])
         self.assertIn("| gain over baseline (95 %) | gain over 2nd baseline (95 %) |", text)
         row = [line for line in text.splitlines() if line.startswith("| fig5 | better |")][0]
@@ -88,8 +80,7 @@ class TablesTest(unittest.TestCase):
         self.assertAlmostEqual(float(better[0]["also_gain"]), 2.5)
 
     def test_latex_escapes_names(self):
-        doc = document()
-        doc["experiment"] = "paper/fig_5"
+        doc = document(experiment="paper/fig_5")
         self.assertIn(r"fig\_5", tables.latex("paper", [doc]))
 
 

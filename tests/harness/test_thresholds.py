@@ -4,10 +4,10 @@ import json
 import math
 import unittest
 
-from fixtures import load_config, summary_entry, valid
+from fixtures import load_config, results_document, summary_entry, valid
 from harness import stats, thresholds
 from harness.errors import HarnessFailure
-from harness.records import to_json
+from harness.results import ConfigFile
 
 # Seeds' σ/µ: baseline mean 0.6, technique mean 0.25 -> gain 2.4.
 BASE = [0.58, 0.60, 0.62, 0.59, 0.61]
@@ -42,27 +42,23 @@ class CalibrateTest(unittest.TestCase):
     def test_keeps_a_minimum_margin_from_a_noiseless_measurement(self):
         exp = load_config(valid())
         same = [0.25] * 5
-        rows = [to_json(summary_entry("base", "spp", 16, [0.5] * 5)),
-                to_json(summary_entry("better", "spp", 16, same,
-                                      stats.gain([0.5] * 5, same, False)))]
-        results = {"summary": rows, "seeds": list(range(5)), "profile": "quick",
-                   "config": {"sha256": exp.profile_sha256["quick"]},
-                   "provenance": {"git_commit": None, "started": "2026-11-22"}}
+        rows = [summary_entry("base", "spp", 16, [0.5] * 5),
+                summary_entry("better", "spp", 16, same, stats.gain([0.5] * 5, same, False))]
+        results = results_document(
+            summary=rows, config=ConfigFile(str(exp.file), exp.profile_sha256["quick"]))
         better = thresholds.calibrate(exp, results, [16]).checks[1]
         self.assertEqual(better.max_error, 0.255)  # 0.25 · 1.02
         self.assertEqual(better.min_gain, 1.96)  # 2 / 1.02 = 1.9608, rounded down
 
     def test_refuses_results_of_another_config(self):
-        results = {"config": {"sha256": "0" * 64}, "profile": "quick"}
+        results = results_document()  # another config's hash
         with self.assertRaises(HarnessFailure):
             thresholds.calibrate(load_config(valid()), results, [16])
 
     def test_mean_plus_four_sd_and_gain_minus_four_stderr(self):
         exp = load_config(valid())
-        results = {"summary": [to_json(s) for s in summary()], "seeds": list(range(5)),
-                   "profile": "quick",
-                   "config": {"sha256": exp.profile_sha256["quick"]},
-                   "provenance": {"git_commit": "0123456789abc", "started": "2026-11-22T10:00"}}
+        results = results_document(
+            summary=summary(), config=ConfigFile(str(exp.file), exp.profile_sha256["quick"]))
         block = thresholds.calibrate(exp, results, [16])
         better = [c for c in block.checks if c.technique == "better"][0]
         e = stats.estimate(BETTER)
