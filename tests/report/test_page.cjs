@@ -3,7 +3,7 @@
 // Debian's chromium, headless, driven by puppeteer-core (experiments/report/node_modules, or
 // REPORT_MODULES). Fails unless the page loads from file:// without a console error or a
 // failed request, every figure's images decode, and keys switch the compared image and the
-// error view. Keeps a screenshot of the first comparison.
+// error view, and zooming one pane zooms the other. Keeps a screenshot of the first comparison.
 "use strict";
 const path = require("path");
 
@@ -77,6 +77,19 @@ async function main() {
         () => document.querySelectorAll(".viewer .caption")[1].textContent);
     if (!right.startsWith("relative error")) fail(`e did not show the error view ("${right}")`);
     await page.keyboard.press("ArrowRight");
+
+    // Zoom in the left pane: the right pane follows (synchronised zoom and pan).
+    const frame = await page.$(".viewer .frame");
+    const box = await frame.boundingBox();
+    await page.mouse.move(box.x + box.width / 3, box.y + box.height / 3);
+    for (let i = 0; i < 4; ++i) await page.mouse.wheel({ deltaY: -240 });
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const transforms = await page.evaluate(() => [...document.querySelector(".viewer")
+        .querySelectorAll("canvas")].map((c) => c.style.transform));
+    if (!/matrix\(/.test(transforms[0]) || transforms[0].startsWith("matrix(1, 0, 0, 1, 0, 0)"))
+      fail(`the wheel did not zoom the left pane ("${transforms[0]}")`);
+    if (transforms[0] !== transforms[1])
+      fail(`the panes' zooms differ: "${transforms[0]}" and "${transforms[1]}"`);
     await first.screenshot({ path: screenshot });
     for (const p of problems) fail(p);
     if (!process.exitCode) console.log(`ok; screenshot ${screenshot}`);
