@@ -83,6 +83,13 @@ unpack_root() {
   mkdir -p "$root"
   tar -C "$root" -xzf "$tarball"
   cp /etc/resolv.conf "$root/etc/resolv.conf"
+  # The machine's own network set-up, as a user's machine has it: the site certificate
+  # authorities it trusts (an egress proxy's, which npm's registry is reached through here).
+  # Debian's ca-certificates, which make deps installs, folds them into the root's bundle.
+  if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+    mkdir -p "$root/usr/local/share/ca-certificates"
+    cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  fi
   mkdir -p "$root/work"
   git clone --quiet --no-hardlinks "$repo" "$root/work/main"
   git -C "$root/work/main" checkout --quiet --detach "$(git -C "$repo" rev-parse HEAD)"
