@@ -130,9 +130,8 @@ def render_run(exp: Experiment, profile: Profile, run: Run, out_dir: Path,
     out.parent.mkdir(parents=True, exist_ok=True)
     technique = exp.techniques[run.technique]
     if run.kind == SPP:
-        integrator, spp = technique.integrator_for(int(run.budget))
-        renders.render_technique(exp, profile, technique, out, run.seed, spp=spp,
-                                 threads=profile.threads_per_job, integrator=integrator)
+        renders.render_at_spp(exp, profile, technique, out, run.seed, int(run.budget),
+                              threads=profile.threads_per_job)
     else:
         renders.render_technique(exp, profile, technique, out, run.seed, seconds=run.budget,
                                  threads=profile.threads_per_job)

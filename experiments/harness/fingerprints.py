@@ -55,10 +55,8 @@ def _pinned(exp: Experiment, profile: Profile, technique: Technique, spp: int) -
 def render_hash(exp: Experiment, profile: Profile, technique: Technique, spp: int,
                 pinned: dict[str, Any], scratch: Path) -> str:
     """Renders the technique at `spp` (seed SEED, one thread) with `pinned` set; its hash."""
-    integrator, samples = technique.integrator_for(spp)
     out = scratch / f"{technique.name}_{spp}spp_seed{SEED}.exr"
-    renders.render_technique(exp, profile, technique, out, SEED, spp=samples, threads=1,
-                             integrator={**integrator, **pinned})
+    renders.render_at_spp(exp, profile, technique, out, SEED, spp, pinned=pinned)
     return pixels_sha256(out)
 
 

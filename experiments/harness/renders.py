@@ -97,6 +97,15 @@ def render_technique(exp: Experiment, profile: Profile, technique: Technique, ou
             out, seed, spp, seconds, threads)
 
 
+def render_at_spp(exp: Experiment, profile: Profile, technique: Technique, out: Path, seed: int,
+                  spp: int, threads: int = 1, pinned: dict[str, Any] | None = None) -> None:
+    """render_technique at an equal-samples budget of `spp` (Technique.integrator_for: a sweep
+    of samples per primary ray renders one pixel sample), with the integrator keys `pinned`."""
+    integrator, samples = technique.integrator_for(spp)
+    render_technique(exp, profile, technique, out, seed, spp=samples, threads=threads,
+                     integrator={**integrator, **(pinned or {})})
+
+
 def _render(scene: list[object], out: Path, seed: int, spp: int | None, seconds: float | None,
             threads: int) -> None:
     """`renderer render SCENE ...` (on a render server)."""

@@ -56,17 +56,12 @@ def _render_again(exp: Experiment, profile: Profile, run: RunRecord, out: Path) 
     """The run rendered again into `out`: at its spp budget, or for an equal-time run at the
     samples it reached (a sweep of samples per primary ray, `samples_at`, at its time)."""
     technique = exp.techniques[run.technique]
-    if run.kind == SPP or technique.samples_at:
-        budget = int(run.budget)
-        integrator, spp = technique.integrator_for(budget)
-        if run.kind == SPP:
-            renders.render_technique(exp, profile, technique, out, SEED, spp=spp, threads=1,
-                                     integrator=integrator)
-        else:
-            renders.render_technique(exp, profile, technique, out, SEED, seconds=run.budget,
-                                     threads=1)
+    if run.kind == SPP:
+        renders.render_at_spp(exp, profile, technique, out, SEED, int(run.budget))
+    elif technique.samples_at:
+        renders.render_technique(exp, profile, technique, out, SEED, seconds=run.budget)
     else:
-        renders.render_technique(exp, profile, technique, out, SEED, spp=run.spp, threads=1)
+        renders.render_technique(exp, profile, technique, out, SEED, spp=run.spp)
     return out
 
 

@@ -39,6 +39,13 @@ const ReportViewer = (() => {
     return Math.min(255, Math.round(255 * c));
   }
 
+  // The error view's colour map, inferno, sampled once (not a colour string per pixel).
+  let inferno = null;
+  function infernoTable() {
+    inferno = inferno || Array.from({ length: 256 }, (_, i) => d3.rgb(d3.interpolateInferno(i / 255)));
+    return inferno;
+  }
+
   function luminance(p, i) {
     return 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
   }
@@ -176,11 +183,12 @@ const ReportViewer = (() => {
       let mean = 0;
       for (let i = 0; i < ref.length; i += 3) mean += luminance(ref, i);
       const floor = Math.max(mean / (ref.length / 3) / 100, 1e-8);
+      const colours = infernoTable();
       for (let i = 0, j = 0; i < p.length; i += 3, j += 4) {
         const r = luminance(ref, i);
         const rel = Math.abs(luminance(p, i) - r) / Math.max(r, floor);
         const t = Math.min(1, Math.max(0, (Math.log10(Math.max(rel, 1e-3)) + 3) / 4));
-        const c = d3.rgb(d3.interpolateInferno(t));
+        const c = colours[Math.round(255 * t)];
         image.data[j] = c.r;
         image.data[j + 1] = c.g;
         image.data[j + 2] = c.b;
