@@ -173,10 +173,12 @@ fresh-check:
 
 # Start-up, peak memory, EXR + PNG write time, Msamples/s and efficiency (default scene and
 # the 202k-triangle dragon), and the renderer's ray throughput against raw Embree's on the
-# same rays; two-stage sampling's cost per shading point against a shadow ray's.
+# same rays; two-stage sampling's cost per shading point against a shadow ray's; the floor under a
+# RIS light candidate on RIS fig. 4.
 bench: build
 	$(PYTHON) experiments/bench.py $(BUILD)
 	$(BUILD)/bin/two_stage_bench
+	$(BUILD)/bin/ris_candidate_floor
 
 # The bench dragon's loop against Embree alone on the very rays it traced, and against
 # everything but Embree alone: results/tables/embree_floor.{md,json}. Builds a renderer with
