@@ -45,7 +45,8 @@ CLUSTER_PACKAGES := slurm-wlm munge
 
 .PHONY: deps configure build run render test asan fuzz stress bench embree-floor rr-study assets \
         references experiments \
-        tables plots check-results report reproduce previews fresh-check cluster-test format clean
+        tables plots check-results report reproduce matrix previews fresh-check cluster-test format \
+        clean
 
 # Installs whatever Debian packages are missing; silent when everything is there.
 deps:
@@ -118,6 +119,16 @@ report: build $(REPORT_MODULES)
 # (experiments/harness/fingerprints.py). Part of `make test` for the quick profile.
 check-results: build
 	$(HARNESS) check-results $(ONLY_CONFIGS)
+
+# The cross-paper matrix (configs/matrix.json): its experiments regenerated from the renderer's
+# registry (configs/experiments/matrix/, one per figure scene), their references (copied from
+# the figures'), renders and results, then results/tables/matrix.{md,csv,tex}, the heat map
+# results/plots/matrix/heatmap.png and the measured part of results/matrix/analysis.md.
+# About 20 minutes on 2 cores (quick); PROFILE=full for the figures' full budgets.
+matrix: build
+	$(HARNESS) matrix-configs
+	@$(MAKE) --no-print-directory reproduce ONLY=matrix
+	$(HARNESS) matrix
 
 # References if missing, all experiments, tables, plots. PROFILE=full for the paper budgets.
 reproduce: build

@@ -14,6 +14,13 @@
   run.py reproduce                               references, run, tables and plots
   run.py overhead                                each experiment's time outside render loops
   run.py report [--only ID ...] [--out DIR]      the results page, results/report/index.html
+  run.py matrix-configs [--check]                the cross-paper matrix's experiments,
+                                                 configs/experiments/matrix/*.json, from the
+                                                 renderer's registry and configs/matrix.json
+                                                 (--check: list those that differ; exit 1)
+  run.py matrix                                  its results -> results/tables/matrix.*, the
+                                                 heat map and the measured part of
+                                                 results/matrix/analysis.md
 
 The units of work of the workflow engine (experiments/Snakefile; harness/workflow.py):
   run.py render-one      CONFIG --run T/B_seedN.exr  one render, its record beside it
@@ -34,8 +41,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from harness import (config, experiment, fingerprints, jobs, paths,  # noqa: E402
-                     references, renders, results, tables, thresholds, workflow)
+from harness import (config, experiment, fingerprints, jobs, matrix_configs,  # noqa: E402
+                     matrix_tables, paths, references, renders, results, tables, thresholds,
+                     workflow)
 from harness.config import Experiment  # noqa: E402
 from harness.errors import ConfigError, HarnessFailure, SceneRejected  # noqa: E402
 
@@ -109,15 +117,42 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_tables(args: argparse.Namespace) -> int:
-    for out in tables.write_all(args.profile):
+    for out in tables.write_all(args.profile) + matrix_tables.write_all(args.profile):
+        print(f"wrote {paths.relative(out)}")
+    return 0
+
+
+def cmd_matrix_configs(args: argparse.Namespace) -> int:
+    if args.check:
+        differences = matrix_configs.differences(args.jobs)
+        for line in differences:
+            print(line)
+        if differences:
+            print("run `experiments/run.py matrix-configs` (or `make matrix`) and commit the "
+                  "result with fresh matrix results", file=sys.stderr)
+        return 1 if differences else 0
+    for out in matrix_configs.write(args.jobs):
+        print(f"wrote {paths.relative(out)}")
+    return 0
+
+
+def cmd_matrix(args: argparse.Namespace) -> int:
+    from harness import matrix_plot
+    rows = matrix_tables.rows(args.profile)
+    if not rows:
+        raise HarnessFailure(f"no {args.profile} results in results/matrix/: run the matrix "
+                             "experiments first (`make matrix`)")
+    for out in matrix_tables.write_all(args.profile) + matrix_plot.write_all(rows, args.profile):
         print(f"wrote {paths.relative(out)}")
     return 0
 
 
 def cmd_plots(args: argparse.Namespace) -> int:
     import figures
-    from harness import plots
-    for out in plots.write_all(args.profile) + figures.write_all(args.profile):
+    from harness import matrix_plot, plots
+    written = plots.write_all(args.profile) + figures.write_all(args.profile)
+    written += matrix_plot.write_all(matrix_tables.rows(args.profile), args.profile)
+    for out in written:
         print(f"wrote {paths.relative(out)}")
     return 0
 
@@ -272,6 +307,11 @@ def parser() -> argparse.ArgumentParser:
     sub.add_parser("tables").set_defaults(func=cmd_tables)
     sub.add_parser("plots").set_defaults(func=cmd_plots)
     sub.add_parser("overhead").set_defaults(func=cmd_overhead)
+    p = sub.add_parser("matrix-configs")
+    p.add_argument("--check", action="store_true",
+                   help="list the configs that differ from what they would be; write nothing")
+    p.set_defaults(func=cmd_matrix_configs)
+    sub.add_parser("matrix").set_defaults(func=cmd_matrix)
     p = sub.add_parser("report")
     p.add_argument("--only", nargs="*", help="experiment ids (<paper>/<figure>) to include")
     p.add_argument("--out", type=Path, help="the page's folder (default results/report/)")

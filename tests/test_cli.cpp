@@ -244,6 +244,40 @@ TEST(Cli, CheckJsonPinsWhatATechniqueMeasures) {
     EXPECT_EQ(nlohmann::json::parse(fixed.out).at("pinned"), nlohmann::json::object());
 }
 
+// `check --json` says what image an integrator estimates and how it can be budgeted (the
+// cross-paper matrix's columns): its light transport, whether a time limit can stop it, and
+// the point and spot lights it cannot reach because it finds emitters only by hitting them.
+TEST(Cli, CheckJsonSaysWhatAnIntegratorEstimates) {
+    const fs::path dir = scratchDirectory();
+    auto check = [&](const std::string& scene, const std::string& integrator) {
+        const ProcessResult r = runProcess(
+            RENDERER_BINARY, {"check", scene, "--json", "--set", "/integrator=" + integrator}, dir);
+        EXPECT_EQ(r.status, 0) << r.errors;
+        return nlohmann::json::parse(r.out);
+    };
+    const nlohmann::json direct = check(kScene, R"({"type":"direct"})");
+    EXPECT_EQ(direct.at("transport"), "direct");
+    EXPECT_EQ(direct.at("timeLimit"), true);
+    EXPECT_EQ(direct.at("unreachableLights"), 0);
+    const nlohmann::json wrapped =
+        check(kScene, R"({"type":"pmc_ip","integrator":{"type":"path_mis"}})");
+    EXPECT_EQ(wrapped.at("transport"), "paths");  // a wrapper's is its pixel integrator's
+    EXPECT_EQ(check(kScene, R"({"type":"tais"})").at("timeLimit"), false);
+
+    const std::string spots = std::string(TEST_SCENES_DIR) + "/tais_fig8_spot_lights.json";
+    EXPECT_EQ(check(spots, R"({"type":"path_mis"})").at("unreachableLights"), 0);
+    EXPECT_EQ(check(spots, R"({"type":"path"})").at("unreachableLights"), 22);
+    EXPECT_EQ(
+        check(spots, R"({"type":"path_mis","estimator":{"type":"bsdf"}})").at("unreachableLights"),
+        22);
+    EXPECT_EQ(check(spots, R"({"type":"path_mis","estimator":{"type":"ris","source":"bsdf"}})")
+                  .at("unreachableLights"),
+              22);
+    EXPECT_EQ(
+        check(spots, R"({"type":"path_mis","estimator":{"type":"ris"}})").at("unreachableLights"),
+        0);
+}
+
 TEST(Cli, UnwritableOutputIsRejectedBeforeRendering) {
     const fs::path dir = scratchDirectory();
     fs::create_directories(dir / "taken.exr");

@@ -10,6 +10,8 @@ configs/README.md ("Experiments").
 A variant ("variant_of": another experiment's file) is merged onto its parent first (_merged)
 and the result checked as any experiment: many figures are also rendered through another film
 with a few of their techniques, and full copies would drift from their parents."""
+from __future__ import annotations
+
 import copy
 import functools
 import hashlib
@@ -44,6 +46,9 @@ SIGNED_METRICS = {"relative_bias"}
 # Efficiencies are 1/(T·error): the error metric each one is built on.
 EFFICIENCY_OF = {"p_eff": "tvi_err", "mse_eff": "mse"}
 PROFILES = ("quick", "full")
+# A fixed-spp technique's `"equal_time": "baseline"`: its render times set equal-time budgets
+# at which only the baseline (and also_baseline) is rendered, not every technique.
+BASELINE_ONLY = "baseline"
 # `"table": {"seconds": "matched"}`: the equal-time rows at each fixed-spp technique's
 # measured render time for the table's spp.
 MATCHED = "matched"
@@ -82,8 +87,17 @@ class Technique:
     samples_at: list[str] = field(default_factory=list)
     # JSON pointer -> value for this technique's renders, after the experiment's (`set`)
     overrides: dict[str, Any] = field(default_factory=dict)
-    # A fixed-spp technique's render times set equal-time budgets (matched_spp) unless false
-    equal_time: bool = True
+    # A fixed-spp technique's render times set equal-time budgets (matched_spp) unless false;
+    # BASELINE_ONLY: budgets at which only the baselines are rendered
+    equal_time: bool | str = True
+    # A time-capable technique whose render times at matched_spp set equal-time budgets (the
+    # cross-paper matrix's default technique at the figure's spp), as a fixed-spp one's do
+    sets_time: bool = False
+
+    @property
+    def sets_budgets(self) -> bool:
+        """Its render times at the profile's matched_spp become equal-time budgets."""
+        return self.sets_time or (self.fixed_spp and self.equal_time is not False)
 
     def integrator_for(self, spp: int) -> tuple[Integrator, int]:
         """The integrator a render of `spp` budget uses, and the pixel samples it takes."""
@@ -122,6 +136,14 @@ class Thresholds:
     checks: list[ThresholdCheck]
 
 
+@dataclass(frozen=True)
+class MatrixRow:
+    """What a cross-paper matrix experiment (harness/matrix_configs.py) is a row of."""
+    figure: str  # the experiment whose setup it takes
+    transport: str  # "direct" or "paths": what its default technique estimates
+    refused: dict[str, str]  # technique -> the renderer's reason; reported, never rendered
+
+
 @dataclass
 class Experiment:
     id: str  # "<paper>/<figure>"
@@ -142,6 +164,7 @@ class Experiment:
     # "common": slopes are fitted over the runs in the time range every technique covers
     slope_time_range: str = "all"
     variant_of: Path | None = None  # a variant's parent config, which it is merged onto
+    matrix: MatrixRow | None = None  # only the cross-paper matrix's experiments
 
     @property
     def files(self) -> list[Path]:
@@ -387,16 +410,23 @@ def _disagreements(doc: dict[str, Any]) -> Iterator[tuple[str, str]]:
             if not isinstance(_resolve(t["integrator"], pointer), int):
                 yield (json_pointer("techniques", name, "samples_at", i),
                        f"{pointer} must name an integer the integrator already has")
-        if "equal_time" in t and not (t.get("fixed_spp", False) or "samples_at" in t):
+        fixed = t.get("fixed_spp", False) or "samples_at" in t
+        if "equal_time" in t and not fixed:
             yield (json_pointer("techniques", name, "equal_time"),
                    "applies only to a fixed-spp technique (whose times set equal-time budgets)")
-    if not any((t.get("fixed_spp", False) or "samples_at" in t) and t.get("equal_time", True)
+        if t.get("sets_time", False) and fixed:
+            yield (json_pointer("techniques", name, "sets_time"),
+                   "applies only to a technique that honours a time limit (a fixed-spp one's "
+                   "times set budgets through equal_time)")
+    if not any(((t.get("fixed_spp", False) or "samples_at" in t) and
+                t.get("equal_time", True) is not False) or t.get("sets_time", False)
                for t in doc["techniques"].values()):
         for name in PROFILES:
             if "matched_spp" in doc["profiles"][name]:
                 yield (json_pointer("profiles", name, "matched_spp"),
-                       "needs a technique with \"fixed_spp\": true and equal time (the budgets "
-                       "are the render times of such techniques)")
+                       "needs a technique with \"fixed_spp\": true and equal time, or with "
+                       "\"sets_time\": true (the budgets are the render times of such "
+                       "techniques)")
     for pointer, entry in _paper_entries(doc):
         yield from _paper_disagreements(doc, pointer, entry)
     if "thresholds" in doc:
@@ -495,7 +525,7 @@ def _experiment(file: Path, doc: dict[str, Any], variant_of: Path | None = None)
         techniques={name: Technique(name, t.get("label", name), t["integrator"],
                                     t.get("fixed_spp", False) or "samples_at" in t,
                                     t.get("samples_at", []), t.get("set", {}),
-                                    t.get("equal_time", True))
+                                    t.get("equal_time", True), t.get("sets_time", False))
                     for name, t in doc["techniques"].items()},
         baseline=doc["baseline"],
         also_baseline=doc.get("also_baseline"),
@@ -507,6 +537,7 @@ def _experiment(file: Path, doc: dict[str, Any], variant_of: Path | None = None)
         thresholds=_thresholds(doc["thresholds"]) if "thresholds" in doc else None,
         slope_time_range=doc.get("slope_time_range", "all"),
         variant_of=variant_of,
+        matrix=MatrixRow(**doc["matrix"]) if "matrix" in doc else None,
     )
 
 

@@ -63,7 +63,7 @@ def matched_budgets(exp: Experiment, profile: Profile,
     groups = group_by_key(records)
     matched = []
     for name, technique in exp.techniques.items():
-        if not technique.fixed_spp or not technique.equal_time:
+        if not technique.sets_budgets:
             continue
         spp_of: dict[float, int] = {}
         for spp in profile.matched_spp:
@@ -87,13 +87,19 @@ def matched_runs(exp: Experiment, profile: Profile, matched: list[MatchedBudget]
     those `records` already hold (a matched time equal to one of the profile's seconds
     budgets is the same budget). Interleaved as in expand."""
     done = {r.key for r in records}
-    budgets = sorted({m.seconds for m in matched})
+    baselines = {exp.baseline, exp.also_baseline}
+    rendered: dict[float, set[str]] = {}  # budget -> the techniques rendered at it
+    for m in matched:
+        everyone = exp.techniques[m.technique].equal_time != config.BASELINE_ONLY
+        rendered.setdefault(m.seconds, set()).update(
+            name for name, t in exp.techniques.items()
+            if not t.fixed_spp and (everyone or name in baselines))
     runs = []
     for seed in range(profile.seeds):
-        for budget in budgets:
-            for name, technique in exp.techniques.items():
+        for budget in sorted(rendered):
+            for name in exp.techniques:
                 run = Run(name, TIME, budget, seed)
-                if not technique.fixed_spp and run.key not in done:
+                if name in rendered[budget] and run.key not in done:
                     runs.append(run)
     return runs
 
@@ -102,11 +108,13 @@ def matched_duplicates(matched: list[MatchedBudget],
                        records: list[RunRecord]) -> list[RunRecord]:
     """Each fixed-spp technique's records at a matched spp entered again as equal-time records
     at the matched seconds (the same renders, files and metrics), so that summaries and gains
-    at equal time need nothing special. duplicate_of marks them for slopes and plots."""
+    at equal time need nothing special. duplicate_of marks them for slopes and plots. A
+    technique that set a budget and was rendered at it (sets_time) keeps its own runs."""
     groups = group_by_key(records)
     return [dataclasses.replace(r, kind=TIME, budget=m.seconds,
                                 duplicate_of=OriginalBudget(SPP, m.spp))
-            for m in matched for r in groups.get(TechniqueBudget(m.technique, SPP, m.spp), [])]
+            for m in matched if TechniqueBudget(m.technique, TIME, m.seconds) not in groups
+            for r in groups.get(TechniqueBudget(m.technique, SPP, m.spp), [])]
 
 
 def parallel_jobs(profile: Profile, requested: int) -> int:
@@ -306,7 +314,9 @@ def results_document(exp: Experiment, profile: Profile, records: list[RunRecord]
         techniques={t.name: TechniqueEntry(t.label, t.integrator, t.fixed_spp,
                                            samples_at=t.samples_at or None,
                                            set=t.overrides or None,
-                                           equal_time=None if t.equal_time else False)
+                                           equal_time=None if t.equal_time is True
+                                           else t.equal_time,
+                                           sets_time=True if t.sets_time else None)
                     for t in exp.techniques.values()},
         baseline=exp.baseline,
         also_baseline=exp.also_baseline,

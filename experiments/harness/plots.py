@@ -133,6 +133,8 @@ def write_all(profile_name: str) -> list[Path]:
     written = []
     suffix = paths.suffix(profile_name)
     for paper, docs in tables.load_results(profile_name).items():
+        if paper == "matrix":  # one budget per technique: the heat map (matrix_plot) instead
+            continue
         for doc in docs:
             figure = tables.figure_of(doc)
             out = paths.PLOTS / paper / f"{figure}_convergence{suffix}.png"

@@ -29,6 +29,11 @@ class SceneCheck:
     # integrator keys that make a render reproducible where its choices follow what it
     # measures (fingerprints.py); {}: reproducible as configured
     pinned: dict[str, Any]
+    transport: str  # the light its image holds: "direct" lighting or "paths"
+    time_limit: bool  # whether it can stop at a time limit (else: fixed spp)
+    # point and spot lights it can neither sample nor hit (it finds emitters only by hitting
+    # them): its image lacks their light
+    unreachable_lights: int
 
 
 @dataclass(frozen=True)
@@ -66,7 +71,8 @@ def check(args: Sequence[object]) -> SceneCheck:
     width, height = answer["resolution"]
     return SceneCheck(answer["integrator"], (width, height), answer["spp"],
                       answer["features"], answer["sceneSha256"], answer["estimandSha256"],
-                      answer["pinned"])
+                      answer["pinned"], answer["transport"], answer["timeLimit"],
+                      answer["unreachableLights"])
 
 
 def check_scene(exp: Experiment, profile: Profile, integrator: Integrator) -> SceneCheck:

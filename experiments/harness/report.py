@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from . import config, exr, jobs, paths, provenance, renders, tables
+from . import config, exr, jobs, matrix_tables, paths, provenance, renders, tables
 from .config import Experiment, Profile
 from .errors import SceneRejected
-from .records import SPP, RunRecord, SummaryEntry
+from .records import SPP, TIME, RunRecord, SummaryEntry, TechniqueBudget
 from .results import Results
 
 VIEWER = paths.ROOT / "experiments" / "report"
@@ -42,10 +42,12 @@ SEED = 0
 
 @dataclass(frozen=True)
 class Shown:
-    """An image of a comparison: its label, its technique (or "reference") and its EXR."""
+    """An image of a comparison: its label, its technique (or "reference"), its EXR and the
+    table row it shows (None: the reference)."""
     label: str
     key: str
     exr: Path
+    row: TechniqueBudget | None = None
 
 
 def _run_of(doc: Results, row: SummaryEntry) -> RunRecord | None:
@@ -86,7 +88,7 @@ def images(exp: Experiment, doc: Results, workers: int) -> list[Shown]:
             file = scratch / run.file_name()
             file.parent.mkdir(parents=True, exist_ok=True)
             missing.append(functools.partial(_render_again, exp, profile, run, file))
-        shown.append(Shown(_label(row, run), row.technique, file))
+        shown.append(Shown(_label(row, run), row.technique, file, row.key))
     jobs.run_parallel(f"{doc.experiment} report renders", missing, [1.0] * len(missing),
                       workers)
     return shown
@@ -101,7 +103,7 @@ def _encoded(file: Path) -> tuple[int, int, str]:
 
 
 def figure_id(doc: Results) -> str:
-    return doc.experiment.replace("/", "__")
+    return figure_id_of(doc.experiment)
 
 
 def _data_script(doc: Results, shown: list[Shown]) -> str:
@@ -172,7 +174,54 @@ relative error, +/− exposure; wheel zooms, drag pans, both panes together)</di
 </section>"""
 
 
-def _page(profile_name: str, sections: dict[str, list[tuple[Results, bool]]]) -> str:
+def _matrix_overview(profile_name: str, indices: dict[str, dict[TechniqueBudget, int]]) -> str:
+    """The cross-paper matrix as tables of scenes by techniques; each measured cell links to
+    its scene's comparison below, showing the technique's equal-time render."""
+    parts = ['<p>Each cell: relMSE gain over the scene\'s default technique at equal time '
+             '(&gt; 1: better) with its 95 % interval over seeds; bold where it excludes 1. '
+             'Click a cell for its images. <code>refused</code>: the renderer\'s reason is in '
+             'the tooltip; <code>·</code>: another light transport.</p>']
+    rows = [r for r in matrix_tables.rows(profile_name)
+            if figure_id_of(r.experiment) in indices]
+    for transport, group in matrix_tables.groups(rows):
+        names = matrix_tables.columns(group)
+        parts.append(f"<h3>{html.escape(matrix_tables.TRANSPORTS[transport])}</h3>"
+                     '<table class="matrix"><tr><th>scene</th><th>budget</th>'
+                     + "".join(f"<th><code>{html.escape(n)}</code></th>" for n in names)
+                     + "</tr>")
+        for r in group:
+            fid = figure_id_of(r.experiment)
+            cells = "".join(_matrix_cell(fid, r.cells.get(n), indices[fid]) for n in names)
+            parts.append(f'<tr><td><a href="#{fid}">{html.escape(r.scene)}</a></td>'
+                         f"<td>{r.budget:g} s</td>{cells}</tr>")
+        parts.append("</table>")
+    return "\n".join(parts)
+
+
+def _matrix_cell(fid: str, cell: matrix_tables.Cell | None,
+                 images: dict[TechniqueBudget, int]) -> str:
+    """A matrix cell: its text, a link that shows its equal-time render in its scene's
+    comparison, the renderer's reason as a refused cell's tooltip."""
+    text = html.escape(matrix_tables.cell_text(cell)).replace("**", "")
+    if cell is None:
+        return f"<td>{text}</td>"
+    if cell.refusal is not None:
+        return f'<td class="refused" title="{html.escape(cell.refusal)}">{text}</td>'
+    if cell.gain is not None and matrix_tables.excludes_one(cell.gain):
+        text = f"<b>{text}</b>"
+    index = (images.get(TechniqueBudget(cell.technique, TIME, cell.seconds))
+             if cell.seconds is not None else None)
+    if index is None:
+        return f"<td>{text}</td>"
+    return f'<td><a href="#{fid}" data-figure="{fid}" data-image="{index}">{text}</a></td>'
+
+
+def figure_id_of(experiment: str) -> str:
+    return experiment.replace("/", "__")
+
+
+def _page(profile_name: str, sections: dict[str, list[tuple[Results, bool]]],
+          indices: dict[str, dict[TechniqueBudget, int]]) -> str:
     nav = []
     body = []
     for paper, docs in sections.items():
@@ -180,6 +229,8 @@ def _page(profile_name: str, sections: dict[str, list[tuple[Results, bool]]]) ->
         nav += [f'<a href="#{figure_id(d)}">{html.escape(tables.figure_of(d))}</a>'
                 for d, _ in docs]
         body.append(f'<h2 id="{paper}">{html.escape(paper)}</h2>')
+        if paper == matrix_tables.PAPER:
+            body.append(_matrix_overview(profile_name, indices))
         body += [_section(d, stale) for d, stale in docs]
     scripts = "".join(f'<script src="vendor/{Path(lib).name}"></script>\n' for lib in LIBRARIES)
     return f"""<!DOCTYPE html>
@@ -220,6 +271,7 @@ def write(profile_name: str, workers: int, only: list[str] | None = None,
     _copy_libraries(out)
     (out / "data").mkdir(parents=True, exist_ok=True)
     sections: dict[str, list[tuple[Results, bool]]] = {}
+    indices: dict[str, dict[TechniqueBudget, int]] = {}  # figure -> its images' rows
     for paper, docs in tables.load_results(profile_name).items():
         for doc in docs:
             if only and doc.experiment not in only:
@@ -234,6 +286,7 @@ def write(profile_name: str, workers: int, only: list[str] | None = None,
                 continue
             provenance.write_text_atomically(out / "data" / f"{figure_id(doc)}.js",
                                              _data_script(doc, shown))
+            indices[figure_id(doc)] = {s.row: i for i, s in enumerate(shown) if s.row}
             plot = (paths.PLOTS / paper /
                     f"{tables.figure_of(doc)}_convergence{paths.suffix(profile_name)}.png")
             if plot.exists():
@@ -241,5 +294,5 @@ def write(profile_name: str, workers: int, only: list[str] | None = None,
                 shutil.copyfile(plot, out / "plots" / paper / plot.name)
             sections.setdefault(paper, []).append((doc, tables.config_changed(doc)))
     page = out / "index.html"
-    provenance.write_text_atomically(page, _page(profile_name, sections))
+    provenance.write_text_atomically(page, _page(profile_name, sections, indices))
     return page

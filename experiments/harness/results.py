@@ -29,7 +29,10 @@ class TechniqueEntry:
     fixed_spp: bool = False  # results older than fixed-spp techniques have none
     samples_at: list[str] | None = None
     set: dict[str, Any] | None = None
-    equal_time: bool | None = None  # only when False: a fixed-spp row that matches no time
+    # only when not True: False, a fixed-spp row that matches no time; "baseline", one matched
+    # by the baselines alone
+    equal_time: bool | str | None = None
+    sets_time: bool | None = None  # only when True: its times set equal-time budgets
 
 
 @dataclass(frozen=True)

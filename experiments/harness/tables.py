@@ -66,8 +66,11 @@ def table_rows(doc: Results) -> list[SummaryEntry]:
         capable = [t for t in techniques if not doc.fixed_spp(t)]
         for m in doc.matched:
             if m.spp == doc.table.spp:
-                rows += [summary[TechniqueBudget(t, TIME, m.seconds)]
-                         for t in capable + [m.technique]]
+                # a budget rendered by the baselines alone (equal_time "baseline") has no
+                # other rows; one set by a time-capable technique (sets_time) lists it once
+                names = capable + ([m.technique] if m.technique not in capable else [])
+                rows += [summary[key] for t in names
+                         if (key := TechniqueBudget(t, TIME, m.seconds)) in summary]
         return rows
     rows = []
     for t in techniques:
@@ -413,6 +416,8 @@ def latex(paper: str, docs: list[Results]) -> str:
 def write_all(profile_name: str) -> list[Path]:
     written = []
     for paper, docs in load_results(profile_name).items():
+        if paper == "matrix":  # one table of scenes by techniques: matrix_tables
+            continue
         for doc in docs:
             if config_changed(doc):
                 print(f"warning: {doc.experiment}: the config has changed since these "

@@ -227,6 +227,10 @@ const ReportViewer = (() => {
     }
     const viewer = new Viewer(root, { id, ...data });
     viewers.set(id, viewer);
+    if (wanted.has(id)) {
+      viewer.show(wanted.get(id));
+      wanted.delete(id);
+    }
     viewer.decodeAll().catch((e) => status.errors.push(`${id}: ${e.message}`));
   }
 
@@ -240,18 +244,36 @@ const ReportViewer = (() => {
     document.head.appendChild(script);
   }
 
+  // A link to one image of a figure (a cell of the cross-paper matrix: data-figure, data-image):
+  // its viewer shows that image, at once or when its data has loaded.
+  const wanted = new Map();
+  function showImage(id, index) {
+    const viewer = viewers.get(id);
+    if (viewer) {
+      viewer.show(index);
+      return;
+    }
+    wanted.set(id, index);
+    const root = document.querySelector(`.viewer[data-figure="${id}"]`);
+    if (root) load(root);
+  }
+
   function loadAll() {
     document.querySelectorAll(".viewer").forEach(load);
   }
 
   function start() {
+    document.addEventListener("click", (event) => {
+      const link = event.target.closest("a[data-image]");
+      if (link) showImage(link.dataset.figure, Number(link.dataset.image));
+    });
     const observer = new IntersectionObserver((entries) => {
       for (const entry of entries) if (entry.isIntersecting) load(entry.target);
     }, { rootMargin: "400px" });
     document.querySelectorAll(".viewer").forEach((v) => observer.observe(v));
   }
 
-  return { register, loadAll, start, status, viewers };
+  return { register, loadAll, start, status, viewers, showImage };
 })();
 
 document.addEventListener("DOMContentLoaded", ReportViewer.start);

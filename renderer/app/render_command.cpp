@@ -5,6 +5,7 @@
 #include <tbb/info.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -230,6 +231,15 @@ int reportBadInput(const RenderCommandOptions& o, const Reporter& report,
     return 2;
 }
 
+// The point and spot lights of the scene that the integrator can neither sample nor hit (it
+// finds emitters only by hitting them): its image lacks their light.
+int unreachableLights(const PreparedRender& p) {
+    if (p.loaded.integrator->samplesLights()) return 0;
+    const auto lights = p.loaded.scene->lights();
+    return int(std::count_if(lights.begin(), lights.end(),
+                             [](const Light* light) { return light->isDelta(); }));
+}
+
 // `renderer check`: the scene is valid. The document hash is what a render records as
 // renderer.sceneSha256: it identifies the scene after overrides, independent of the file's
 // whitespace and comments. The estimand hash leaves out what changes only the estimator
@@ -247,7 +257,10 @@ int reportValid(const RenderCommandOptions& o, const PreparedRender& p) {
                              {"features", features},
                              {"sceneSha256", sceneSha},
                              {"estimandSha256", estimandSha},
-                             {"pinned", p.loaded.integrator->pinnedSettings()}};
+                             {"pinned", p.loaded.integrator->pinnedSettings()},
+                             {"transport", transportName(p.loaded.integrator->transport())},
+                             {"timeLimit", p.schedule->supportsTimeLimit()},
+                             {"unreachableLights", unreachableLights(p)}};
         std::printf("%s\n", result.dump().c_str());
     } else {
         std::printf(

@@ -67,6 +67,8 @@ class DirectLighting final : public SampleIntegrator {
         : estimator_(std::move(estimator)), bsdfSamples_(bsdfSamples) {}
 
     std::string name() const override { return "direct"; }
+    LightTransport transport() const override { return LightTransport::Direct; }
+    bool samplesLights() const override { return estimator_->samplesLights(); }
     nlohmann::json parameters() const override;
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,
                  RayCounters& rays) const override;

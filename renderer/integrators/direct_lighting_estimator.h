@@ -52,6 +52,9 @@ class DirectLightingEstimator {
     // False for estimators that sample directions and find emission along them
     // (ShadingPoint::incidentEmission), which scenes with media do not provide.
     virtual bool worksInMedia() const { return true; }
+    // Whether it draws points on lights; one that does not finds emitters only by hitting
+    // them, so a point or spot light (a delta light) never reaches its estimate.
+    virtual bool samplesLights() const { return lightSamples() > 0; }
     // The fields the estimator records per pixel at first hits (ShadingPoint::record), which
     // the `direct` and `path_mis` integrators average over each pixel's samples and write as
     // channels of these names; no names: none.

@@ -49,11 +49,27 @@ struct PixelEstimates {
     std::vector<Rgb> variances;
 };
 
+// What light an integrator's image holds: light reaching the camera after one reflection from
+// the lights (direct lighting), or along paths of every length the scene's path settings allow.
+// Two integrators estimate the same image only if they agree on it (the cross-paper matrix
+// compares only those: experiments/harness/matrix.py).
+enum class LightTransport : uint8_t { Direct, Paths };
+
+inline const char* transportName(LightTransport transport) {
+    return transport == LightTransport::Direct ? "direct" : "paths";
+}
+
 class Integrator {
   public:
     virtual ~Integrator() = default;
     // The type it is registered under (render/technique_registry.h), as scenes name it.
     virtual std::string name() const = 0;
+    virtual LightTransport transport() const = 0;
+    // Whether it draws points on lights (next-event estimation); one that does not finds
+    // emitters only by hitting them, so point and spot lights never reach its image, which
+    // then estimates another image than the scene's (`renderer check --json`'s
+    // unreachableLights).
+    virtual bool samplesLights() const { return true; }
     // Parameters as recorded in the output metadata: readParameters() and what the
     // integrator resolved from them.
     virtual nlohmann::json parameters() const = 0;

@@ -47,6 +47,8 @@ namespace rr {
 class PathTracerBase : public SampleIntegrator {
   public:
     std::string name() const override { return name_; }
+    LightTransport transport() const override { return LightTransport::Paths; }
+    bool samplesLights() const override { return nee_->samplesLights(); }
     nlohmann::json parameters() const override;
 
     uint32_t decisionRepeats() const override { return std::max(1u, nee_->decisionRepeats()); }

@@ -15,7 +15,7 @@ from unittest import mock
 from fixtures import load_config, results_document, summary_entry, tiny_matched, valid
 from harness import (experiment, fingerprints, jobs, paths, references, stats, tables,
                      thresholds)
-from harness.errors import HarnessFailure
+from harness.errors import ConfigError, HarnessFailure
 from harness.records import (MatchedBudget, OriginalBudget, Run, RunRecord, TechniqueBudget,
                              index_by_key, to_json)
 from harness.results import Results, TableBudgets, TechniqueEntry
@@ -114,6 +114,43 @@ class MatchedBudgetsTest(unittest.TestCase):
                    for s in SEEDS]
         self.assertEqual(experiment.matched_budgets(exp, exp.profiles["quick"], records),
                          [MatchedBudget("other", 4, 0.5)])
+
+    def test_a_time_capable_technique_that_sets_time_is_rendered_at_its_own_budget(self):
+        # the cross-paper matrix: the baseline's time at 4 spp is every technique's budget
+        doc = valid()
+        doc["techniques"]["base"]["sets_time"] = True
+        doc["techniques"]["fixed"] = {"integrator": {"type": "path"}, "fixed_spp": True,
+                                      "equal_time": "baseline"}
+        doc["profiles"]["quick"].update(matched_spp=[4])
+        exp = load_config(doc)
+        records = [record(t, "spp", 4, s, time, 1.0) for t, time in
+                   (("base", 0.25), ("better", 0.5), ("fixed", 0.75)) for s in SEEDS]
+        matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
+        self.assertEqual(matched, [MatchedBudget("base", 4, 0.25),
+                                   MatchedBudget("fixed", 4, 0.75)])
+        runs = experiment.matched_runs(exp, exp.profiles["quick"], matched, records)
+        # at the baseline's budget every time-capable technique, itself included; at the
+        # "baseline"-only technique's budget only the baseline
+        self.assertEqual({(r.technique, r.budget) for r in runs},
+                         {("base", 0.25), ("better", 0.25), ("base", 0.75)})
+        self.assertEqual(len(runs), 3 * len(SEEDS))
+        timed = [record(r.technique, "time", r.budget, r.seed, r.budget, 0.9) for r in runs]
+        copies = experiment.matched_duplicates(matched, records + timed)
+        # the fixed-spp technique's renders stand for it at its time; the baseline keeps the
+        # renders it made at its own budget
+        self.assertEqual({(c.technique, c.budget) for c in copies}, {("fixed", 0.75)})
+
+    def test_sets_time_and_a_baseline_only_budget_are_checked(self):
+        doc = valid()
+        doc["techniques"]["better"].update(fixed_spp=True, sets_time=True)
+        with self.assertRaises(ConfigError) as caught:
+            load_config(doc)
+        self.assertEqual(caught.exception.pointer, "/techniques/better/sets_time")
+        doc = valid()
+        doc["techniques"]["better"].update(fixed_spp=True, equal_time="base")
+        with self.assertRaises(ConfigError) as caught:
+            load_config(doc)
+        self.assertEqual(caught.exception.pointer, "/techniques/better/equal_time")
 
     def test_slopes_can_be_fitted_over_the_time_range_every_technique_covers(self):
         # budgets by their mean times over seeds: fixed 4 spp 0.55 s, 16 spp 2 s (its seeds

@@ -90,6 +90,22 @@ async function main() {
       fail(`the wheel did not zoom the left pane ("${transforms[0]}")`);
     if (transforms[0] !== transforms[1])
       fail(`the panes' zooms differ: "${transforms[0]}" and "${transforms[1]}"`);
+
+    // A cell of the cross-paper matrix (when the page has one) shows its technique's image in
+    // its scene's comparison: the caption names the cell's column.
+    const cells = await page.$$("table.matrix a[data-image]");
+    for (const cell of cells.slice(-2)) {
+      const { figure, image, column } = await cell.evaluate((a) => ({
+        figure: a.dataset.figure, image: a.dataset.image,
+        column: a.closest("table").rows[0].cells[a.closest("td").cellIndex].textContent }));
+      await cell.click();
+      const shown = await page.evaluate((id) => {
+        const root = document.querySelector(`.viewer[data-figure="${id}"]`);
+        return { current: root.dataset.current, caption: root.querySelector(".caption").textContent };
+      }, figure);
+      if (shown.current !== image) fail(`the ${column} cell showed image ${shown.current}, not ${image}`);
+      if (!shown.caption.includes(`${column}, `)) fail(`the ${column} cell showed "${shown.caption}"`);
+    }
     await first.screenshot({ path: screenshot });
     for (const p of problems) fail(p);
     if (!process.exitCode) console.log(`ok; screenshot ${screenshot}`);

@@ -66,6 +66,9 @@ class PmcIpIntegrator final : public Integrator {
                     const PmcIpSettings& settings);
 
     std::string name() const override { return "pmc_ip"; }
+    // PMC-IP reallocates the samples of its pixel integrator, whose image it estimates.
+    LightTransport transport() const override { return pixelIntegrator_->transport(); }
+    bool samplesLights() const override { return pixelIntegrator_->samplesLights(); }
     nlohmann::json parameters() const override;
     uint32_t decisionRepeats() const override { return pixelIntegrator_->decisionRepeats(); }
     void prepare(const Scene& scene) override { pixelIntegrator_->prepare(scene); }

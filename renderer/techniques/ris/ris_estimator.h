@@ -100,6 +100,11 @@ class RisEstimator final : public DirectLightingEstimator {
 
     CandidateSource source() const { return source_; }
     const CandidateCounts& counts() const { return counts_; }
+    // Directions from a hemisphere or the BSDF find emitters only by hitting them; the mixture
+    // takes infinite lights only.
+    bool samplesLights() const override {
+        return fromLights() || source_ == CandidateSource::Mixture;
+    }
 
   private:
     bool fromLights() const {

@@ -41,6 +41,8 @@ class RisIntegrator final : public SampleIntegrator {
     explicit RisIntegrator(const RisSettings& settings);
 
     std::string name() const override { return "ris"; }
+    LightTransport transport() const override { return LightTransport::Direct; }
+    bool samplesLights() const override { return estimator_.samplesLights(); }
     nlohmann::json parameters() const override;
     uint32_t decisionRepeats() const override { return estimator_.decisionRepeats(); }
     Rgb estimate(const Scene& scene, int x, int y, const PixelSample& sample,

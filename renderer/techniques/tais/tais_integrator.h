@@ -36,6 +36,7 @@ class TaisIntegrator final : public Integrator {
     TaisIntegrator(const TaisSettings& settings, std::array<std::string, kMapKinds> mapPointers);
 
     std::string name() const override { return "tais"; }
+    LightTransport transport() const override { return LightTransport::Paths; }
     nlohmann::json parameters() const override;
     // Resolves `auto` to the maps whose decisions the scene has; rejects a map asked for
     // whose decision the scene lacks.

@@ -44,6 +44,7 @@ class TwoStageIntegrator final : public SampleIntegrator {
         : settings_(settings), estimator_(settings.estimator) {}
 
     std::string name() const override { return "two_stage"; }
+    LightTransport transport() const override { return LightTransport::Direct; }
     nlohmann::json parameters() const override;
     uint32_t decisionRepeats() const override;
     void prepare(const Scene& scene) override { estimator_.prepare(scene, "/integrator"); }
