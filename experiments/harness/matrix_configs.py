@@ -28,6 +28,7 @@ at a time limit renders the same spp and the default is rendered again at its ti
 (equal_time "baseline"), as the harness matches fixed-spp techniques in every experiment."""
 import functools
 import json
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -228,19 +229,28 @@ def config_file(scene: str) -> Path:
     return paths.CONFIGS / PAPER / scene
 
 
-def generate(workers: int, catalogue: dict[str, Any] | None = None) -> dict[Path, str]:
-    """Every matrix experiment's file and text, from the registry (`catalogue`: `renderer
-    keys`'s answer, or a stand-in's) and configs/matrix.json."""
+def generate(workers: int) -> dict[Path, str | None]:
+    """Every matrix experiment's file and text, from the registry and configs/matrix.json; None
+    for a scene whose asset is absent on this machine (it cannot be checked here, and its
+    config is left as it is), unless REQUIRE_ASSETS=1."""
     spec = load_spec()
-    candidates = columns(catalogue or registry(), spec)
+    candidates = columns(registry(), spec)
     figures = scenes_and_figures(spec)
-    rows = {scene: cells(figure, candidates, workers) for scene, figure in figures.items()}
+    rows: dict[str, tuple[str, list[Cell]]] = {}
+    out: dict[Path, str | None] = {}
+    for scene, figure in figures.items():
+        try:
+            rows[scene] = cells(figure, candidates, workers)
+        except SceneRejected as e:
+            if not e.skippable:
+                raise
+            print(f"{scene}: skipped, an asset is absent ({e.message})", file=sys.stderr)
+            out[config_file(scene)] = None
     transports = column_transports([row for _, row in rows.values()])
-    out = {}
     for scene, (transport, row) in rows.items():
         document = experiment_document(scene, figures[scene], transport, row, transports, spec)
         out[config_file(scene)] = json.dumps(document, indent=2, ensure_ascii=False) + "\n"
-    return out
+    return dict(sorted(out.items()))
 
 
 def write(workers: int) -> list[Path]:
@@ -248,7 +258,7 @@ def write(workers: int) -> list[Path]:
     generated = generate(workers)
     for file, text in generated.items():
         file.parent.mkdir(parents=True, exist_ok=True)
-        if not file.exists() or file.read_text(encoding="utf-8") != text:
+        if text is not None and (not file.exists() or file.read_text(encoding="utf-8") != text):
             provenance.write_text_atomically(file, text)
     for stale in set((paths.CONFIGS / PAPER).glob("*.json")) - set(generated):
         stale.unlink()
@@ -263,6 +273,6 @@ def differences(workers: int) -> list[str]:
     out += [f"{paths.relative(f)}: no scene of an experiment any more"
             for f in sorted(present - set(generated))]
     out += [f"{paths.relative(f)}: differs" for f in sorted(set(generated) & present)
-            if f.read_text(encoding="utf-8") != generated[f]]
+            if generated[f] is not None and f.read_text(encoding="utf-8") != generated[f]]
     return out
 
