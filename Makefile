@@ -124,7 +124,8 @@ check-results: build
 # registry (configs/experiments/matrix/, one per figure scene), their references (copied from
 # the figures'), renders and results, then results/tables/matrix.{md,csv,tex}, the heat map
 # results/plots/matrix/heatmap.png and the measured part of results/matrix/analysis.md.
-# About 20 minutes on 2 cores (quick); PROFILE=full for the figures' full budgets.
+# About 8 minutes on 2 cores (quick: 6.6 minutes of renders, 35 s of checks); PROFILE=full for
+# the figures' full budgets.
 matrix: build
 	$(HARNESS) matrix-configs
 	@$(MAKE) --no-print-directory reproduce ONLY=matrix
