@@ -17,6 +17,14 @@ from .matrix_tables import TRANSPORTS, Row, columns, groups  # noqa: E402
 from .plots import save  # noqa: E402
 
 LIMIT = 4.0  # log₂ gain at which the colour saturates (×16)
+NORM = colors.Normalize(-LIMIT, LIMIT)
+CMAP = plt.get_cmap("RdBu")
+
+
+def cell_colour(gain: float) -> tuple[str, bool]:
+    """A gain's colour (hex) on the heat map's scale, and whether text on it should be white."""
+    value = max(-LIMIT, min(LIMIT, math.log2(gain)))
+    return colors.to_hex(CMAP(NORM(value))), abs(value) > 0.6 * LIMIT
 
 
 def heatmap(all_rows: list[Row], out: Path) -> None:
@@ -25,8 +33,6 @@ def heatmap(all_rows: list[Row], out: Path) -> None:
     width = max(len(columns(group)) for _, group in panels)
     fig, axes = plt.subplots(len(panels), 1, figsize=(2.0 + 1.25 * width, 0.42 * sum(heights)),
                              gridspec_kw={"height_ratios": heights}, squeeze=False)
-    norm = colors.Normalize(-LIMIT, LIMIT)
-    cmap = plt.get_cmap("RdBu")
     for ax, (transport, group) in zip(axes[:, 0], panels):
         names = columns(group)
         for y, r in enumerate(group):
@@ -40,18 +46,16 @@ def heatmap(all_rows: list[Row], out: Path) -> None:
                     ax.text(x, y, "refused", ha="center", va="center", fontsize=6, color="0.3")
                     continue
                 if name == DEFAULT:
-                    value, label = 0.0, f"1\n{r.budget:.3g} s"
+                    gain, label = 1.0, f"1\n{r.budget:.3g} s"
                 elif c.gain is None:
                     continue
                 else:
                     lo, hi = c.gain.ci95
-                    value = math.log2(c.gain.value)
-                    label = f"×{c.gain.value:.2g}\n[{lo:.2g}, {hi:.2g}]"
+                    gain, label = c.gain.value, f"×{c.gain.value:.2g}\n[{lo:.2g}, {hi:.2g}]"
                     if c.over_budget:
                         label += f"\n† ×{c.time_ratio:.2g} time"
-                colour = cmap(norm(max(-LIMIT, min(LIMIT, value))))
+                colour, dark = cell_colour(gain)
                 ax.add_patch(plt.Rectangle((x - .5, y - .5), 1, 1, facecolor=colour))
-                dark = abs(value) > 0.6 * LIMIT
                 ax.text(x, y, label, ha="center", va="center", fontsize=6,
                         color="white" if dark else "black")
         ax.set_xlim(-.5, len(names) - .5)
@@ -62,7 +66,7 @@ def heatmap(all_rows: list[Row], out: Path) -> None:
         ax.set_title(f"{TRANSPORTS[transport]}: relMSE gain over the scene's default at equal "
                      "time (> 1: better; 95 % interval over seeds; † over budget)", fontsize=8)
         ax.tick_params(length=0)
-    bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes[:, 0],
+    bar = fig.colorbar(plt.cm.ScalarMappable(norm=NORM, cmap=CMAP), ax=axes[:, 0],
                        fraction=0.02, pad=0.01)
     bar.set_label("log₂ gain", fontsize=7)
     save(fig, out)

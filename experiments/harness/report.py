@@ -25,7 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import config, exr, jobs, matrix_tables, paths, provenance, renders, tables
+from . import (config, exr, jobs, matrix_plot, matrix_tables, paths, provenance, renders,
+               tables)
 from .config import Experiment, Profile
 from .errors import SceneRejected
 from .records import SPP, TIME, RunRecord, SummaryEntry, TechniqueBudget
@@ -186,7 +187,7 @@ def _matrix_overview(profile_name: str, indices: dict[str, dict[TechniqueBudget,
     for transport, group in matrix_tables.groups(rows):
         names = matrix_tables.columns(group)
         parts.append(f"<h3>{html.escape(matrix_tables.TRANSPORTS[transport])}</h3>"
-                     '<table class="matrix"><tr><th>scene</th><th>budget</th>'
+                     '<div class="matrix"><table class="matrix"><tr><th>scene</th><th>budget</th>'
                      + "".join(f"<th><code>{html.escape(n)}</code></th>" for n in names)
                      + "</tr>")
         for r in group:
@@ -194,7 +195,7 @@ def _matrix_overview(profile_name: str, indices: dict[str, dict[TechniqueBudget,
             cells = "".join(_matrix_cell(fid, r.cells.get(n), indices[fid]) for n in names)
             parts.append(f'<tr><td><a href="#{fid}">{html.escape(r.scene)}</a></td>'
                          f"<td>{r.budget:g} s</td>{cells}</tr>")
-        parts.append("</table>")
+        parts.append("</table></div>")
     return "\n".join(parts)
 
 
@@ -209,11 +210,16 @@ def _matrix_cell(fid: str, cell: matrix_tables.Cell | None,
         return f'<td class="refused" title="{html.escape(cell.refusal)}">{text}</td>'
     if cell.gain is not None and matrix_tables.excludes_one(cell.gain):
         text = f"<b>{text}</b>"
+    style = ""
+    if cell.gain is not None:
+        colour, dark = matrix_plot.cell_colour(cell.gain.value)
+        style = f' style="background: {colour}{"; color: #fff" if dark else ""}"'
     index = (images.get(TechniqueBudget(cell.technique, TIME, cell.seconds))
              if cell.seconds is not None else None)
     if index is None:
-        return f"<td>{text}</td>"
-    return f'<td><a href="#{fid}" data-figure="{fid}" data-image="{index}">{text}</a></td>'
+        return f"<td{style}>{text}</td>"
+    return (f'<td{style}><a href="#{fid}" data-figure="{fid}" data-image="{index}">{text}</a>'
+            "</td>")
 
 
 def figure_id_of(experiment: str) -> str:
