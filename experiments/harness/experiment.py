@@ -104,16 +104,17 @@ def matched_runs(exp: Experiment, profile: Profile, matched: list[MatchedBudget]
     return runs
 
 
-def matched_duplicates(matched: list[MatchedBudget],
+def matched_duplicates(exp: Experiment, matched: list[MatchedBudget],
                        records: list[RunRecord]) -> list[RunRecord]:
     """Each fixed-spp technique's records at a matched spp entered again as equal-time records
     at the matched seconds (the same renders, files and metrics), so that summaries and gains
     at equal time need nothing special. duplicate_of marks them for slopes and plots. A
-    technique that set a budget and was rendered at it (sets_time) keeps its own runs."""
+    time-capable technique that set a budget (sets_time) was rendered at it, and keeps those
+    runs."""
     groups = group_by_key(records)
     return [dataclasses.replace(r, kind=TIME, budget=m.seconds,
                                 duplicate_of=OriginalBudget(SPP, m.spp))
-            for m in matched if TechniqueBudget(m.technique, TIME, m.seconds) not in groups
+            for m in matched if exp.techniques[m.technique].fixed_spp
             for r in groups.get(TechniqueBudget(m.technique, SPP, m.spp), [])]
 
 
@@ -368,7 +369,7 @@ def run(exp: Experiment, profile_name: str, workers: int) -> Path:
             if runs:
                 records += execute(exp, profile, runs, out_dir, reference_file, workers,
                                    phase="matched time")
-            records += matched_duplicates(matched, records)
+            records += matched_duplicates(exp, matched, records)
     finally:
         render_server.close_all()  # their CPU time counts once they have exited
     document = results_document(exp, profile, records, matched, entry, reference_file, {

@@ -52,7 +52,7 @@ class Column:
 
 
 @dataclass(frozen=True)
-class Cell:
+class ColumnCheck:
     """What a column is on one scene: its integrator, and whether the renderer accepted it,
     estimates the scene's image and can stop at a time limit."""
     column: str
@@ -118,7 +118,7 @@ def scene_integrator(figure: Experiment) -> dict[str, Any]:
     return integrator
 
 
-def cells(figure: Experiment, candidates: list[Column], workers: int) -> tuple[str, list[Cell]]:
+def cells(figure: Experiment, candidates: list[Column], workers: int) -> tuple[str, list[ColumnCheck]]:
     """The scene's light transport, and each column as `renderer check` sees it on the scene
     as the figure renders it (its overrides, its quick resolution and table spp: PMC-IP, say,
     needs more samples than its initial ones)."""
@@ -130,19 +130,19 @@ def cells(figure: Experiment, candidates: list[Column], workers: int) -> tuple[s
 
     default = check(scene_integrator(figure))
 
-    def one(column: Column) -> Cell:
+    def one(column: Column) -> ColumnCheck:
         integrator = column.integrator[default.transport]
         try:
             answer = check(integrator)
         except SceneRejected as e:
             if e.skippable:
                 raise
-            return Cell(column.name, integrator, e.message, None, False)
+            return ColumnCheck(column.name, integrator, e.message, None, False)
         if answer.unreachable_lights:
             # accepted, but its image is another one: it lacks the delta lights' light
-            return Cell(column.name, integrator, unreachable(answer.unreachable_lights),
+            return ColumnCheck(column.name, integrator, unreachable(answer.unreachable_lights),
                         answer.transport, False)
-        return Cell(column.name, integrator, None, answer.transport, answer.time_limit)
+        return ColumnCheck(column.name, integrator, None, answer.transport, answer.time_limit)
 
     return default.transport, jobs.run_parallel(
         f"matrix {figure.scene.name}", [functools.partial(one, c) for c in candidates],
@@ -156,7 +156,7 @@ def unreachable(count: int) -> str:
             "--json`: unreachableLights): another image than the scene's")
 
 
-def column_transports(rows: list[list[Cell]]) -> dict[str, set[str]]:
+def column_transports(rows: list[list[ColumnCheck]]) -> dict[str, set[str]]:
     """What each column estimates on the scenes that accept it: one transport, or both for a
     wrapper (it follows the scene's); none for a column refused everywhere."""
     out: dict[str, set[str]] = {}
@@ -166,11 +166,10 @@ def column_transports(rows: list[list[Cell]]) -> dict[str, set[str]]:
     return out
 
 
-def experiment_document(scene: str, figure: Experiment, transport: str, row: list[Cell],
+def experiment_document(scene: str, figure: Experiment, transport: str, row: list[ColumnCheck],
                         transports: dict[str, set[str]], spec: dict[str, Any]) -> dict[str, Any]:
     """The matrix experiment of one scene: the columns that estimate its transport, and the
     refused ones that would (or whose transport no scene shows)."""
-    with_figure = json.loads(figure.file.read_text(encoding="utf-8"))
     techniques: dict[str, Any] = {DEFAULT: {
         "label": "the scene's default technique (its own integrator): sets the time budget",
         "integrator": scene_integrator(figure), "sets_time": True}}
@@ -199,8 +198,8 @@ def experiment_document(scene: str, figure: Experiment, transport: str, row: lis
         "reference": {"integrator": figure.reference_integrator},
         "profiles": {name: _profile(figure, name, spec) for name in config.PROFILES},
     })
-    if "relmse_reject" in with_figure:
-        document["relmse_reject"] = with_figure["relmse_reject"]
+    if figure.relmse_reject:
+        document["relmse_reject"] = figure.relmse_reject
     document["matrix"] = {
         "figure": figure.id, "transport": transport,
         "refused": {c.column: c.refusal for c in row if c.refusal is not None
@@ -229,14 +228,17 @@ def config_file(scene: str) -> Path:
     return paths.CONFIGS / PAPER / scene
 
 
-def generate(workers: int) -> dict[Path, str | None]:
-    """Every matrix experiment's file and text, from the registry and configs/matrix.json; None
+def generate(workers: int, catalogue: dict[str, Any] | None = None,
+             only: set[str] | None = None) -> dict[Path, str | None]:
+    """Every matrix experiment's file and text, from the registry (`catalogue`: `renderer
+    keys`'s answer, or a test's stand-in) and configs/matrix.json; `only`: these scenes. None
     for a scene whose asset is absent on this machine (it cannot be checked here, and its
     config is left as it is), unless REQUIRE_ASSETS=1."""
     spec = load_spec()
-    candidates = columns(registry(), spec)
-    figures = scenes_and_figures(spec)
-    rows: dict[str, tuple[str, list[Cell]]] = {}
+    candidates = columns(catalogue or registry(), spec)
+    figures = {scene: figure for scene, figure in scenes_and_figures(spec).items()
+               if only is None or scene in only}
+    rows: dict[str, tuple[str, list[ColumnCheck]]] = {}
     out: dict[Path, str | None] = {}
     for scene, figure in figures.items():
         try:
@@ -265,9 +267,13 @@ def write(workers: int) -> list[Path]:
     return sorted(generated)
 
 
-def differences(workers: int) -> list[str]:
-    """The matrix configs that differ from what HEAD's renderer and configs/matrix.json give."""
+def differences(workers: int) -> list[str] | None:
+    """The matrix configs that differ from what HEAD's renderer and configs/matrix.json give.
+    None when a scene's asset is absent here: a column's transport, and so the refusals every
+    row lists, may then depend on the scene that could not be checked."""
     generated = generate(workers)
+    if None in generated.values():
+        return None
     present = set((paths.CONFIGS / PAPER).glob("*.json"))
     out = [f"{paths.relative(f)}: missing" for f in sorted(set(generated) - present)]
     out += [f"{paths.relative(f)}: no scene of an experiment any more"

@@ -1,7 +1,8 @@
 """The cross-paper matrix's heat map (results/plots/matrix/heatmap.png): one panel per light
 transport, scenes down, techniques across, each cell coloured by log₂ of its gain at equal
 time (matrix_tables.Cell) and labelled with the gain and its 95 % interval (†: its renders
-overran the budget); refused cells hatched, cells of the other transport left out."""
+took another time than the default's); refused cells hatched, cells of the other transport
+left out."""
 import math
 from pathlib import Path
 
@@ -52,7 +53,7 @@ def heatmap(all_rows: list[Row], out: Path) -> None:
                 else:
                     lo, hi = c.gain.ci95
                     gain, label = c.gain.value, f"×{c.gain.value:.2g}\n[{lo:.2g}, {hi:.2g}]"
-                    if c.over_budget:
+                    if c.unequal_time:
                         label += f"\n† ×{c.time_ratio:.2g} time"
                 colour, dark = cell_colour(gain)
                 ax.add_patch(plt.Rectangle((x - .5, y - .5), 1, 1, facecolor=colour))
@@ -64,7 +65,7 @@ def heatmap(all_rows: list[Row], out: Path) -> None:
         ax.set_yticks(range(len(group)), [r.scene.removesuffix(".json") for r in group],
                       fontsize=7)
         ax.set_title(f"{TRANSPORTS[transport]}: relMSE gain over the scene's default at equal "
-                     "time (> 1: better; 95 % interval over seeds; † over budget)", fontsize=8)
+                     "time (> 1: better; 95 % interval over seeds; † not at equal time)", fontsize=8)
         ax.tick_params(length=0)
     bar = fig.colorbar(plt.cm.ScalarMappable(norm=NORM, cmap=CMAP), ax=axes[:, 0],
                        fraction=0.02, pad=0.01)

@@ -11,20 +11,22 @@ technique of the other light transport has no cell."""
 import csv
 import io
 import math
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import config, paths, provenance, results, stats
+from . import config, paths, provenance, results, stats, tables
 from .errors import ConfigError
 from .matrix_configs import DEFAULT, PAPER
 from .records import TIME, TechniqueBudget, index_by_key
 from .results import Results
 
 METRIC = "relmse"
-# A cell whose renders took more than this multiple of the budget on average is marked: the
-# time limit stops a render between passes, so a pass longer than the budget overshoots it.
-OVER_BUDGET = 1.1
+# A cell whose mean render time differs from the default's at the same budget by more than
+# this factor, either way, is marked and left out of the counts: a time limit stops a render
+# between passes, so at a budget of one or a few passes the two cannot match.
+TIME_MISMATCH = 1.1
 ROUNDING = 1e-9
 TRANSPORTS = {"direct": "Direct-lighting scenes", "paths": "Path-traced scenes"}
 ANALYSIS_FILE = paths.RESULTS / PAPER / "analysis.md"
@@ -40,13 +42,15 @@ class Cell:
     seconds: float | None = None  # the equal-time budget compared at
     spp: float | None = None  # mean samples per pixel the technique reached there
     refusal: str | None = None
-    time_ratio: float | None = None  # its mean render time / the budget
+    # its mean render time / the default's at the same budget
+    time_ratio: float | None = None
 
     @property
-    def over_budget(self) -> bool:
-        """Its shortest render (one pass, or a pilot) took longer than the budget: the cell
-        is not at equal time, and its gain flatters it."""
-        return self.time_ratio is not None and self.time_ratio > OVER_BUDGET
+    def unequal_time(self) -> bool:
+        """Its renders took more than TIME_MISMATCH times the default's (or less than
+        1/TIME_MISMATCH) on average: the cell is not at equal time."""
+        return self.time_ratio is not None and not (
+            1 / TIME_MISMATCH <= self.time_ratio <= TIME_MISMATCH)
 
 
 @dataclass(frozen=True)
@@ -57,6 +61,7 @@ class Row:
     budget: float  # the default's time: every time-capable technique's budget
     default_spp: int
     cells: dict[str, Cell]
+    config_changed: bool  # the config (its refusals, say) changed since the results were made
 
 
 def rows(profile_name: str) -> list[Row]:
@@ -70,34 +75,39 @@ def rows(profile_name: str) -> list[Row]:
 
 
 def row(doc: Results) -> Row:
+    """A scene's cells: each technique at the budget it is compared at (the default's time, or
+    a fixed-spp technique's own), and the refusals its config records."""
     exp = config.load(paths.ROOT / doc.config.file)
+    if exp.matrix is None:
+        raise ConfigError(exp.file, "/matrix", "required in a matrix experiment")
+    changed = tables.config_changed(doc)
+    if changed:
+        print(f"warning: {doc.experiment}: the config has changed since these results were "
+              "made; the table marks the row", file=sys.stderr)
     summary = index_by_key(doc.summary)
     budget = {m.technique: m.seconds for m in doc.matched}
     cells: dict[str, Cell] = {}
     for name in doc.techniques:
         seconds = budget.get(name if doc.fixed_spp(name) else DEFAULT)
-        entry = summary.get(TechniqueBudget(name, TIME, seconds)) if seconds else None
+        if seconds is None:
+            cells[name] = Cell(name)
+            continue
+        entry = summary.get(TechniqueBudget(name, TIME, seconds))
+        default = summary.get(TechniqueBudget(DEFAULT, TIME, seconds))
         cells[name] = Cell(name, entry.gain.get(METRIC) if entry else None, seconds,
                            entry.spp.mean if entry else None,
-                           time_ratio=entry.time.mean / seconds if entry and seconds else None)
-    if exp.matrix is None:
-        raise ConfigError(exp.file, "/matrix", "required in a matrix experiment")
+                           time_ratio=entry.time.mean / default.time.mean
+                           if entry and default else None)
     for name, reason in exp.matrix.refused.items():
         cells[name] = Cell(name, refusal=reason)
     return Row(Path(doc.scene).name, doc.experiment, exp.matrix.transport, budget[DEFAULT],
-               doc.table.spp, cells)
+               doc.table.spp, cells, changed)
 
 
 def columns(group: list[Row]) -> list[str]:
-    """The techniques of a group of rows, in the order their experiments list them, refused
-    ones in the registry's order among them."""
-    seen: list[str] = []
-    for r in group:
-        for name in r.cells:
-            if name not in seen:
-                seen.append(name)
-    rest = sorted(n for n in seen if n != DEFAULT)
-    return [DEFAULT, *rest]
+    """The techniques of a group of rows: the default, then the rest by name (so an
+    estimator's columns stand together: direct-bsdf, direct-light, ...)."""
+    return [DEFAULT, *sorted({n for r in group for n in r.cells} - {DEFAULT})]
 
 
 def groups(all_rows: list[Row]) -> Iterator[tuple[str, list[Row]]]:
@@ -113,69 +123,89 @@ def excludes_one(g: stats.Gain) -> bool:
     return g.ci95[0] > 1 + ROUNDING or g.ci95[1] < 1 - ROUNDING
 
 
-def cell_text(cell: Cell | None) -> str:
+def refusal_notes(all_rows: list[Row]) -> dict[str, int]:
+    """Each distinct refusal (technique and reason) -> its note number, in order."""
+    reasons = sorted({f"`{c.technique}`: {c.refusal}" for r in all_rows
+                      for c in r.cells.values() if c.refusal})
+    return {reason: i + 1 for i, reason in enumerate(reasons)}
+
+
+def cell_text(cell: Cell | None, notes: dict[str, int] | None = None) -> str:
+    """A cell as the tables show it: the gain with its interval (bold when it excludes 1, †
+    when not at equal time), "refused (n)" with the note of the renderer's reason, "·" for a
+    technique of the other transport."""
     if cell is None:
         return "·"
     if cell.refusal is not None:
-        return "refused"
+        note = (notes or {}).get(f"`{cell.technique}`: {cell.refusal}")
+        return f"refused ({note})" if note else "refused"
     if cell.technique == DEFAULT:
         return "1"
     if cell.gain is None:
         return "—"
     lo, hi = cell.gain.ci95
     mark = "**" if excludes_one(cell.gain) else ""
-    over = f" † (×{cell.time_ratio:.2g} the time)" if cell.over_budget else ""
-    return f"{mark}×{cell.gain.value:.3g}{mark} [{lo:.3g}, {hi:.3g}]{over}"
+    unequal = f" † (×{cell.time_ratio:.2g} the time)" if cell.unequal_time else ""
+    return f"{mark}×{cell.gain.value:.3g}{mark} [{lo:.3g}, {hi:.3g}]{unequal}"
+
+
+LEGEND = (
+    "Each cell: the scene's default technique's relMSE over the technique's, at equal time "
+    "(> 1: the technique is better), with the 95 % interval over the seeds (paired); bold where "
+    "the interval excludes 1. The default (the scene file's own integrator) renders the "
+    "figure's table spp; its mean render time is the budget. A technique that cannot stop at a "
+    "time limit (tais) renders the same spp and is compared with the default rendered again at "
+    "its time. `refused (n)`: the renderer refuses the combination, for reason n below; `·`: "
+    "it estimates another image (direct lighting against paths). †: the technique's mean render "
+    f"time differs from the default's at that budget by more than ×{TIME_MISMATCH:g} either "
+    "way (a time limit stops a render between passes, so at a budget of one or a few passes "
+    "the two cannot match): not an equal-time comparison; the analysis counts its verdict only "
+    "where the mismatch cannot explain it, with the interval charged for the extra time as if "
+    "the error fell in proportion to time. ‡: the scene's config has changed since its results were made. Techniques run at "
+    "their documented defaults (configs/matrix.json); nothing is tuned per scene. Made by "
+    "`make matrix` from results/matrix/*.json.")
 
 
 def markdown(all_rows: list[Row]) -> str:
+    notes = refusal_notes(all_rows)
     lines = ["# The cross-paper matrix: every technique on every figure scene at equal time", "",
-             "Each cell: the scene's default technique's relMSE over the technique's, at equal "
-             "time (> 1: the technique is better), with the 95 % interval over the seeds "
-             "(paired); bold where the interval excludes 1. The default (the scene file's own "
-             "integrator) renders the figure's table spp; its mean render time is the budget. "
-             "A technique that cannot stop at a time limit (tais) renders the same spp and is "
-             "compared with the default rendered again at its time. `refused`: the renderer "
-             "refuses the combination (reasons below); `·`: it estimates another image "
-             "(direct lighting against paths). † : the technique's renders took more than "
-             f"×{OVER_BUDGET:g} the budget on average (a time limit stops a render between "
-             "passes, and its first pass or pilot was longer than the budget): not equal time, "
-             "and the gain flatters it. Techniques run at their documented defaults "
-             "(configs/matrix.json); nothing is tuned per scene. Made by `make matrix` from "
-             "results/matrix/*.json.", ""]
+             LEGEND, ""]
     for transport, group in groups(all_rows):
         names = columns(group)
         lines += [f"## {TRANSPORTS[transport]}", "",
                   "| scene | budget | " + " | ".join(f"`{n}`" for n in names) + " |",
                   "|---|---|" + "---|" * len(names)]
         for r in group:
-            cells = " | ".join(cell_text(r.cells.get(n)) for n in names)
-            lines.append(f"| {r.scene.removesuffix('.json')} | {r.budget:g} s "
+            cells = " | ".join(cell_text(r.cells.get(n), notes) for n in names)
+            changed = " ‡" if r.config_changed else ""
+            lines.append(f"| {r.scene.removesuffix('.json')}{changed} | {r.budget:g} s "
                          f"({r.default_spp} spp) | {cells} |")
         lines.append("")
     lines += ["## Refusals", ""]
-    reasons: dict[str, list[str]] = {}
+    scenes: dict[str, list[str]] = {}
     for r in all_rows:
         for c in r.cells.values():
             if c.refusal:
-                reasons.setdefault(f"`{c.technique}`: {c.refusal}", []).append(
+                scenes.setdefault(f"`{c.technique}`: {c.refusal}", []).append(
                     r.scene.removesuffix(".json"))
-    lines += [f"- {reason} ({', '.join(scenes)})" for reason, scenes in sorted(reasons.items())]
+    lines += [f"{n}. {reason} ({', '.join(scenes[reason])})" for reason, n in notes.items()]
     return "\n".join(lines) + "\n"
 
 
 def csv_text(all_rows: list[Row]) -> str:
     out = io.StringIO()
     w = csv.writer(out, lineterminator="\n")
-    w.writerow(["scene", "experiment", "transport", "technique", "status", "seconds", "spp",
-                "time_over_budget", "gain", "gain_ci95_lo", "gain_ci95_hi", "refusal"])
+    w.writerow(["scene", "experiment", "transport", "technique", "status", "verdict",
+                "seconds", "spp", "time_ratio_to_default", "gain", "gain_ci95_lo",
+                "gain_ci95_hi", "refusal"])
     for r in all_rows:
         for name in columns([r]):
             c = r.cells[name]
             status = ("refused" if c.refusal else "baseline" if name == DEFAULT
-                      else "measured" if c.gain else "no equal-time runs")
+                      else "no equal-time runs" if c.gain is None else "measured")
             g = c.gain
             w.writerow([r.scene, r.experiment, r.transport, name, status,
+                        "" if name == DEFAULT else verdict(c) or "",
                         "" if c.seconds is None else c.seconds,
                         "" if c.spp is None else f"{c.spp:.6g}",
                         "" if c.time_ratio is None else f"{c.time_ratio:.4g}",
@@ -186,27 +216,27 @@ def csv_text(all_rows: list[Row]) -> str:
 
 
 def _tex(text: str) -> str:
-    return text.replace("_", r"\_").replace("×", r"$\times$")
+    return (text.replace("_", r"\_").replace("×", r"$\times$").replace("†", r"$^\dagger$")
+            .replace("·", r"$\cdot$").replace("**", ""))
 
 
 def latex(all_rows: list[Row]) -> str:
+    """The tables as booktabs tabulars, the cells as in the Markdown (gain [interval], †,
+    refused (n) with the notes as a comment list after each)."""
+    notes = refusal_notes(all_rows)
     lines = []
     for transport, group in groups(all_rows):
         names = columns(group)
-        lines += [f"% {TRANSPORTS[transport]}: gain in relMSE over the default at equal time",
+        lines += [f"% {TRANSPORTS[transport]}: relMSE gain over the default at equal time",
                   r"\begin{tabular}{l" + "r" * len(names) + "}", r"\toprule",
                   "scene & " + " & ".join(_tex(n) for n in names) + r" \\", r"\midrule"]
         for r in group:
-            cells = []
-            for n in names:
-                c = r.cells.get(n)
-                cells.append("--" if c is None or (c.gain is None and c.technique != DEFAULT)
-                             else "1" if c.technique == DEFAULT else f"{c.gain.value:.3g}"
-                             if c.gain else "--")
-            lines.append(_tex(r.scene.removesuffix(".json")) + " & " + " & ".join(cells)
-                         + r" \\")
+            cells = " & ".join(_tex(cell_text(r.cells.get(n), notes).split(" (×")[0])
+                               for n in names)
+            lines.append(_tex(r.scene.removesuffix(".json")) + " & " + cells + r" \\")
         lines += [r"\bottomrule", r"\end{tabular}", ""]
-    return "\n".join(lines)
+    lines += [f"% refused ({n}): {reason}" for reason, n in notes.items()]
+    return "\n".join(lines) + "\n"
 
 
 def _median(values: list[float]) -> float:
@@ -216,41 +246,57 @@ def _median(values: list[float]) -> float:
     return v[mid] if len(v) % 2 else math.sqrt(v[mid - 1] * v[mid])
 
 
-def _fair(cell: Cell | None) -> stats.Gain | None:
-    """A cell's gain if it was measured at equal time (not over budget)."""
-    return cell.gain if cell is not None and not cell.over_budget else None
+def verdict(cell: Cell | None) -> str | None:
+    """"better" or "worse" than the default beyond the interval, "inconclusive", or "unequal
+    time": a † cell whose time mismatch could explain its verdict. The interval is first
+    charged for the mismatch, on the assumption that a Monte Carlo error falls at most in
+    proportion to the time (MSE ∝ 1/T): divided by the time ratio where the technique had
+    more time than the default, multiplied where it had less would flatter it, so left as it
+    is; a loss is charged likewise the other way. None: no measurement."""
+    if cell is None or cell.gain is None:
+        return None
+    ratio = cell.time_ratio if cell.time_ratio is not None else 1.0
+    lo, hi = cell.gain.ci95
+    if lo / max(ratio, 1.0) > 1 + ROUNDING:
+        return "better"
+    if hi / min(ratio, 1.0) < 1 - ROUNDING:
+        return "worse"
+    return "unequal time" if cell.unequal_time else "inconclusive"
 
 
 def measured_summary(all_rows: list[Row]) -> list[str]:
     """For each technique: on how many scenes it is better, worse or indistinguishable at
-    equal time (cells over budget left out and counted apart), its median gain, and its best
-    and worst scene; then each scene's winner."""
+    equal time (verdict(): cells whose time mismatch could explain their verdict counted
+    apart), its median gain over the others, and its best and worst scene; then each scene's
+    winner: the best of the techniques that beat the default."""
     lines = [BEGIN, "", "### Measured (quick profile; `make matrix` regenerates this part)", ""]
     for transport, group in groups(all_rows):
         lines += [f"**{TRANSPORTS[transport]}** ({len(group)}):", "",
-                  "| technique | better | worse | inconclusive | over budget | refused | "
+                  "| technique | better | worse | inconclusive | unequal time | refused | "
                   "median gain | best | worst |", "|---|---|---|---|---|---|---|---|---|"]
         for name in columns(group)[1:]:
             cells = [(r.scene.removesuffix(".json"), r.cells.get(name)) for r in group]
-            gains = [(scene, g) for scene, c in cells if (g := _fair(c)) is not None]
-            over = sum(1 for _, c in cells if c is not None and c.over_budget)
+            verdicts = [verdict(c) for _, c in cells]
+            gains = [(scene, c.gain) for (scene, c), v in zip(cells, verdicts)
+                     if c is not None and c.gain is not None and v != "unequal time"]
+            unequal = verdicts.count("unequal time")
             refused = sum(1 for _, c in cells if c is not None and c.refusal)
-            better = sum(excludes_one(g) and g.value > 1 for _, g in gains)
-            worse = sum(excludes_one(g) and g.value < 1 for _, g in gains)
+            better, worse = verdicts.count("better"), verdicts.count("worse")
             if not gains:
-                lines.append(f"| `{name}` | 0 | 0 | 0 | {over} | {refused} | — | — | — |")
+                lines.append(f"| `{name}` | 0 | 0 | 0 | {unequal} | {refused} | — | — | — |")
                 continue
             best = max(gains, key=lambda p: p[1].value)
             worst = min(gains, key=lambda p: p[1].value)
             lines.append(f"| `{name}` | {better} | {worse} | {len(gains) - better - worse} | "
-                         f"{over} | {refused} | ×{_median([g.value for _, g in gains]):.3g} | "
+                         f"{unequal} | {refused} | ×{_median([g.value for _, g in gains]):.3g} | "
                          f"{best[0]} ×{best[1].value:.3g} | {worst[0]} ×{worst[1].value:.3g} |")
         lines += ["", "| scene | best technique at equal time | its gain |", "|---|---|---|"]
         for r in group:
-            fair = [(c.technique, g) for c in r.cells.values() if (g := _fair(c)) is not None]
+            winners = [(c.technique, c.gain) for c in r.cells.values()
+                       if c.gain is not None and verdict(c) == "better"]
             scene = r.scene.removesuffix(".json")
-            winner = max(fair, key=lambda p: p[1].value) if fair else None
-            if winner is None or not (excludes_one(winner[1]) and winner[1].value > 1):
+            winner = max(winners, key=lambda p: p[1].value) if winners else None
+            if winner is None:
                 lines.append(f"| {scene} | the default (none better beyond its interval) | 1 |")
             else:
                 lo, hi = winner[1].ci95

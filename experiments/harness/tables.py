@@ -64,13 +64,15 @@ def table_rows(doc: Results) -> list[SummaryEntry]:
     if isinstance(seconds, str):  # config.MATCHED
         rows = [summary[TechniqueBudget(t, SPP, spp)] for t in techniques]
         capable = [t for t in techniques if not doc.fixed_spp(t)]
+        baselines = {doc.baseline, doc.also_baseline}
         for m in doc.matched:
             if m.spp == doc.table.spp:
-                # a budget rendered by the baselines alone (equal_time "baseline") has no
-                # other rows; one set by a time-capable technique (sets_time) lists it once
-                names = capable + ([m.technique] if m.technique not in capable else [])
-                rows += [summary[key] for t in names
-                         if (key := TechniqueBudget(t, TIME, m.seconds)) in summary]
+                # at a budget only the baselines were rendered at (equal_time "baseline"),
+                # only they; a time-capable technique that set it (sets_time) once
+                alone = doc.techniques[m.technique].equal_time == config.BASELINE_ONLY
+                names = [t for t in capable if t in baselines or not alone]
+                names += [m.technique] if m.technique not in names else []
+                rows += [summary[TechniqueBudget(t, TIME, m.seconds)] for t in names]
         return rows
     rows = []
     for t in techniques:

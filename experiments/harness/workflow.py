@@ -112,7 +112,7 @@ def assemble(exp: Experiment, profile: Profile) -> Path:
     matched, second = second_phase(exp, profile)
     documents = _read(exp, profile, first_phase(exp, profile) + second)
     records = _records(documents)
-    records += experiment.matched_duplicates(matched, records)
+    records += experiment.matched_duplicates(exp, matched, records)
     entry, reference_file = references.lookup(exp, profile)
     jobs = [d["job"] for d in documents]
     document = experiment.results_document(exp, profile, records, matched, entry, reference_file, {

@@ -52,7 +52,7 @@ struct PixelEstimates {
 // What light an integrator's image holds: light reaching the camera after one reflection from
 // the lights (direct lighting), or along paths of every length the scene's path settings allow.
 // Two integrators estimate the same image only if they agree on it (the cross-paper matrix
-// compares only those: experiments/harness/matrix.py).
+// compares only those: experiments/harness/matrix_configs.py).
 enum class LightTransport : uint8_t { Direct, Paths };
 
 inline const char* transportName(LightTransport transport) {

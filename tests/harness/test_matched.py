@@ -135,7 +135,7 @@ class MatchedBudgetsTest(unittest.TestCase):
                          {("base", 0.25), ("better", 0.25), ("base", 0.75)})
         self.assertEqual(len(runs), 3 * len(SEEDS))
         timed = [record(r.technique, "time", r.budget, r.seed, r.budget, 0.9) for r in runs]
-        copies = experiment.matched_duplicates(matched, records + timed)
+        copies = experiment.matched_duplicates(exp, matched, records + timed)
         # the fixed-spp technique's renders stand for it at its time; the baseline keeps the
         # renders it made at its own budget
         self.assertEqual({(c.technique, c.budget) for c in copies}, {("fixed", 0.75)})
@@ -198,7 +198,7 @@ class MatchedBudgetsTest(unittest.TestCase):
         matched = experiment.matched_budgets(exp, exp.profiles["quick"], records)
         records += [record("base", "time", m.seconds, seed, m.seconds, 0.4 + 0.01 * seed)
                     for seed in SEEDS for m in matched]
-        duplicates = experiment.matched_duplicates(matched, records)
+        duplicates = experiment.matched_duplicates(exp, matched, records)
         self.assertEqual(len(duplicates), 2 * 5)
         originals = [r for r in records if r.technique == "better" and r.budget == 16]
         copies = [r for r in duplicates if r.budget == 0.011]

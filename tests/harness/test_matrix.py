@@ -12,7 +12,7 @@ from pathlib import Path
 
 import fixtures  # noqa: F401  (puts experiments/ on the path)
 from harness import config, matrix_configs, matrix_plot, matrix_tables, paths, stats
-from harness.matrix_configs import DEFAULT, Cell
+from harness.matrix_configs import DEFAULT, ColumnCheck
 
 FIXTURE_ESTIMATOR, FIXTURE_INTEGRATOR, FIXTURE_WRAPPER = "fixture_est", "fixture_int", "fixture_wrap"
 
@@ -65,17 +65,17 @@ def figure():
 def fixture_row():
     """The fixture techniques as `renderer check` would answer on a direct-lighting scene: one
     accepted, one that cannot stop at a time limit, one refused, one of the other transport."""
-    return [Cell("direct-mis", {"type": "direct", "estimator": {"type": "mis"}}, None, "direct",
+    return [ColumnCheck("direct-mis", {"type": "direct", "estimator": {"type": "mis"}}, None, "direct",
                  True),
-            Cell("direct-fixture_est", {"type": "direct", "estimator": {"type": "fixture_est"}},
+            ColumnCheck("direct-fixture_est", {"type": "direct", "estimator": {"type": "fixture_est"}},
                  None, "direct", True),
-            Cell(FIXTURE_INTEGRATOR, {"type": FIXTURE_INTEGRATOR, "knob": 3}, None, "direct",
+            ColumnCheck(FIXTURE_INTEGRATOR, {"type": FIXTURE_INTEGRATOR, "knob": 3}, None, "direct",
                  False),
-            Cell(FIXTURE_WRAPPER, {"type": FIXTURE_WRAPPER}, "/integrator: no, not here", None,
+            ColumnCheck(FIXTURE_WRAPPER, {"type": FIXTURE_WRAPPER}, "/integrator: no, not here", None,
                  False),
-            Cell("path_mis-fixture_est", {"type": "path_mis"}, "/integrator/estimator: no",
+            ColumnCheck("path_mis-fixture_est", {"type": "path_mis"}, "/integrator/estimator: no",
                  None, False),
-            Cell("tais", {"type": "tais"}, None, "paths", False)]
+            ColumnCheck("tais", {"type": "tais"}, None, "paths", False)]
 
 
 TRANSPORTS = {"direct-mis": {"direct"}, "direct-fixture_est": {"direct"},
@@ -121,15 +121,38 @@ def gain(value):
 
 
 def fixture_rows():
-    cells = {DEFAULT: matrix_tables.Cell(DEFAULT, None, 0.5, 16),
-             "direct-mis": matrix_tables.Cell("direct-mis", gain(1.0), 0.5, 15),
-             "direct-fixture_est": matrix_tables.Cell("direct-fixture_est", gain(3.0), 0.5, 9),
-             FIXTURE_WRAPPER: matrix_tables.Cell(FIXTURE_WRAPPER, refusal="/integrator: no")}
-    direct = matrix_tables.Row("a.json", "matrix/a", "direct", 0.5, 16, cells)
+    """A direct row with the fixture technique at equal time, one refused, and one that took
+    1.5 times the default's time; a path row with tais."""
+    cell = matrix_tables.Cell
+    cells = {DEFAULT: cell(DEFAULT, None, 0.5, 16, time_ratio=1.0),
+             "direct-mis": cell("direct-mis", gain(1.0), 0.5, 15, time_ratio=0.98),
+             "direct-fixture_est": cell("direct-fixture_est", gain(3.0), 0.5, 9, time_ratio=1.02),
+             "direct-slow": cell("direct-slow", gain(1.4), 0.5, 1, time_ratio=1.5),
+             FIXTURE_WRAPPER: cell(FIXTURE_WRAPPER, refusal="/integrator: no")}
+    direct = matrix_tables.Row("a.json", "matrix/a", "direct", 0.5, 16, cells, False)
     paths_row = matrix_tables.Row("b.json", "matrix/b", "paths", 1.0, 8, {
-        DEFAULT: matrix_tables.Cell(DEFAULT, None, 1.0, 8),
-        "tais": matrix_tables.Cell("tais", gain(0.5), 1.3, 8)})
+        DEFAULT: cell(DEFAULT, None, 1.0, 8, time_ratio=1.0),
+        "tais": cell("tais", gain(0.5), 1.3, 8, time_ratio=1.0)}, True)
     return [direct, paths_row]
+
+
+class GenerateTest(unittest.TestCase):
+    """generate() with the real renderer on one scene, the registry extended by a fixture
+    estimator that the renderer does not know."""
+
+    SCENE = "ris_fig5_diffuse_sphere.json"
+
+    def test_a_technique_registered_later_is_checked_on_each_scene(self):
+        real = matrix_configs.registry()
+        stand_in = copy.deepcopy(real)
+        stand_in["categories"]["estimator"]["types"].append(
+            [FIXTURE_ESTIMATOR, f"estimator/{FIXTURE_ESTIMATOR}"])
+        file = matrix_configs.config_file(self.SCENE)
+        doc = json.loads(matrix_configs.generate(2, stand_in, {self.SCENE})[file])
+        # the renderer refuses it here, in its own words, which the row keeps
+        self.assertIn(FIXTURE_ESTIMATOR, doc["matrix"]["refused"][f"direct-{FIXTURE_ESTIMATOR}"])
+        committed = json.loads(file.read_text())
+        self.assertEqual(doc["techniques"], committed["techniques"])
 
 
 class TablesTest(unittest.TestCase):
@@ -138,7 +161,21 @@ class TablesTest(unittest.TestCase):
         self.assertIn("`direct-fixture_est`", text)
         self.assertIn("**×3** [2.4, 3.6]", text)  # the interval excludes 1: bold
         self.assertIn("×1 [0.8, 1.2]", text)
-        self.assertIn(f"`{FIXTURE_WRAPPER}`: /integrator: no (a)", text)  # the reason
+        self.assertIn("| refused (1) |", text)  # the reason's note
+        self.assertIn(f"1. `{FIXTURE_WRAPPER}`: /integrator: no (a)", text)
+
+    def test_a_cell_not_at_equal_time_is_marked_and_charged_for_its_time(self):
+        text = matrix_tables.markdown(fixture_rows())
+        self.assertIn("**×1.4** [1.12, 1.68] † (×1.5 the time)", text)
+        self.assertIn("| b ‡ |", text)  # its config changed since
+        summary = "\n".join(matrix_tables.measured_summary(fixture_rows()))
+        self.assertIn("| `direct-slow` | 0 | 0 | 0 | 1 | 0 | — | — | — |", summary)
+        self.assertIn("| a | `direct-fixture_est` | ×3 [2.4, 3.6] |", summary)
+        # charged for 1.5 times the time, ×1.4 [1.12, 1.68] could be a tie; ×3 could not
+        faster = matrix_tables.Cell("x", gain(3.0), 0.5, 1, time_ratio=1.5)
+        self.assertEqual(matrix_tables.verdict(faster), "better")
+        slower = matrix_tables.Cell("x", gain(0.5), 0.5, 1, time_ratio=0.6)  # [0.4, 0.6] / 0.6
+        self.assertEqual(matrix_tables.verdict(slower), "unequal time")
 
     def test_each_transport_has_its_own_columns(self):
         text = matrix_tables.markdown(fixture_rows())
@@ -151,6 +188,9 @@ class TablesTest(unittest.TestCase):
         rows = list(csv.DictReader(io.StringIO(matrix_tables.csv_text(fixture_rows()))))
         status = {(r["scene"], r["technique"]): r["status"] for r in rows}
         self.assertEqual(status[("a.json", "direct-fixture_est")], "measured")
+        verdicts = {r["technique"]: r["verdict"] for r in rows if r["scene"] == "a.json"}
+        self.assertEqual((verdicts["direct-fixture_est"], verdicts["direct-slow"]),
+                         ("better", "unequal time"))
         self.assertEqual(status[("a.json", FIXTURE_WRAPPER)], "refused")
         self.assertEqual(status[("a.json", DEFAULT)], "baseline")
         fixture = next(r for r in rows if r["technique"] == "direct-fixture_est")
