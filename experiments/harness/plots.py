@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from . import paths, records, tables  # noqa: E402
+from . import matrix_configs, paths, records, tables  # noqa: E402
 from .exr import read_exr  # noqa: E402
 from .records import SPP, TIME, SummaryEntry, TechniqueBudget  # noqa: E402
 from .results import Results  # noqa: E402
@@ -133,7 +133,7 @@ def write_all(profile_name: str) -> list[Path]:
     written = []
     suffix = paths.suffix(profile_name)
     for paper, docs in tables.load_results(profile_name).items():
-        if paper == "matrix":  # one budget per technique: the heat map (matrix_plot) instead
+        if paper == matrix_configs.PAPER:  # one budget per technique: the heat map instead
             continue
         for doc in docs:
             figure = tables.figure_of(doc)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import config, paths, provenance, records, results, stats
+from . import config, matrix_configs, paths, provenance, records, results, stats
 from .config import PaperNumbers
 from .errors import ConfigError
 from .records import SPP, TIME, SummaryEntry, TechniqueBudget
@@ -418,7 +418,7 @@ def latex(paper: str, docs: list[Results]) -> str:
 def write_all(profile_name: str) -> list[Path]:
     written = []
     for paper, docs in load_results(profile_name).items():
-        if paper == "matrix":  # one table of scenes by techniques: matrix_tables
+        if paper == matrix_configs.PAPER:  # one table of scenes by techniques: matrix_tables
             continue
         for doc in docs:
             if config_changed(doc):
